@@ -1,0 +1,48 @@
+// cli/main: the `rupture` binary. Parses the command line, dispatches to one subcommand, and turns
+// errors into one-line messages and exit codes (0 ok, 1 failed, 2 bad input, 4 rejected).
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "rupture/version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace rupture;
+  CLI::App app{"rupture: fiber bundle models, bonded-particle DEM tension tests and the precursor of failure"};
+  app.set_version_flag("--version", version_string);
+  app.require_subcommand(1);
+  int exit_code = exit_ok;
+  cli::add_study_command(app, exit_code);
+  cli::add_fbm_command(app, exit_code);
+  cli::add_sample_command(app, exit_code);
+  cli::add_run_commands(app, exit_code);
+  cli::add_bench_command(app, exit_code);
+  cli::add_analyze_command(app, exit_code);
+  cli::add_monitor_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return exit_bad_input;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "rupture: error: {}\n", e.what());
+    return exit_bad_input;
+  } catch (const RunError& e) {
+    fmt::print(stderr, "rupture: failed: {}\n", e.what());
+    return exit_failure;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rupture: internal error: {}\n", e.what());
+    return exit_failure;
+  }
+  return exit_code;
+}

@@ -1,0 +1,43 @@
+// io/csv: numeric CSV tables, the exchange format of loading curves.
+// Convention (docs/formats.md): optional leading '#' comment lines, one header line whose fields are
+// `name[unit]` (the unit in brackets is optional), then rows of numbers separated by commas.
+// Every reader error names the file, line and column and says what to do.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rupture::io {
+
+struct CsvTable {
+  std::string source;                        // file name used in messages
+  std::vector<std::string> comments;         // '#' lines before the header, without the '#'
+  std::vector<std::string> header;           // full field names, e.g. "strain[%]"
+  std::vector<std::vector<double>> columns;  // columns[c][row]
+  std::vector<std::size_t> line_of_row;      // 1-based line number of each row in the source
+
+  std::size_t rows() const { return columns.empty() ? 0 : columns.front().size(); }
+  // Index of the column called `name`, matched against the whole field or the part before '['.
+  std::optional<std::size_t> find(std::string_view name) const;
+  // Like find(), but throws InputError listing the available columns.
+  std::size_t require(std::string_view name) const;
+  const std::vector<double>& column(std::string_view name) const { return columns[require(name)]; }
+};
+
+// The part of a header field before '[' (trimmed), and the unit inside the brackets ("" if none).
+std::string column_name(std::string_view field);
+std::string column_unit(std::string_view field);
+
+CsvTable parse_csv(std::string_view text, const std::string& source);
+CsvTable read_csv(const std::filesystem::path& path);
+
+// Formats one row with the shortest representation that reads back to the same double, so files
+// are byte-identical whenever the numbers are.
+std::string format_csv_row(const std::vector<double>& values);
+std::string format_csv_header(const std::vector<std::string>& fields);
+
+}  // namespace rupture::io
