@@ -5,30 +5,26 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "support/tool.hpp"
 
 namespace rupture::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_dir(const std::string& name) {
-  auto dir = fs::temp_directory_path() / ("rupture_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using rupture::testing::TempDir;
 
 TEST(AtomicFile, CommitReplacesTargetAndLeavesNoTemporary) {
-  const auto dir = fresh_dir("atomic");
+  TempDir tmp;
+  const auto& dir = tmp.path();
   write_file_atomically(dir / "a.txt", "old\n");
   write_file_atomically(dir / "a.txt", "new\n");
   EXPECT_EQ(read_text_file(dir / "a.txt"), "new\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
-  fs::remove_all(dir);
 }
 
 TEST(AtomicFile, AbandonedWriteKeepsThePreviousVersion) {
-  const auto dir = fresh_dir("abandon");
+  TempDir tmp;
+  const auto& dir = tmp.path();
   write_file_atomically(dir / "a.txt", "kept\n");
   {
     AtomicFile file(dir / "a.txt");
@@ -37,7 +33,6 @@ TEST(AtomicFile, AbandonedWriteKeepsThePreviousVersion) {
   }
   EXPECT_EQ(read_text_file(dir / "a.txt"), "kept\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
-  fs::remove_all(dir);
 }
 
 TEST(AtomicFile, UnwritableFolderIsAClearError) {
@@ -45,12 +40,12 @@ TEST(AtomicFile, UnwritableFolderIsAClearError) {
 }
 
 TEST(AtomicFile, JsonIsPrettyAndTerminated) {
-  const auto dir = fresh_dir("json");
+  TempDir tmp;
+  const auto& dir = tmp.path();
   write_json_atomically(dir / "r.json", nlohmann::json{{"x_c", 0.5}});
   const auto text = read_text_file(dir / "r.json");
   EXPECT_EQ(nlohmann::json::parse(text)["x_c"], 0.5);
   EXPECT_EQ(text.back(), '\n');
-  fs::remove_all(dir);
 }
 
 }  // namespace
