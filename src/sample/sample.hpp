@@ -34,6 +34,9 @@ struct Sample {
   std::vector<ParticleGroup> group;     // glued layer membership
   std::vector<Bond> bonds;              // sorted by (i, j), i < j
   double density = 2.5e-4;              // g/mm^3; a run config may override it
+  // Free-text provenance (tool version, generator inputs, source file), one entry per line; carried
+  // through rupture's own format as comment lines, so every sample file says how it was made.
+  std::vector<std::string> provenance;
 
   std::size_t size() const { return position.size(); }
 };

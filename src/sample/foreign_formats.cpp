@@ -1,0 +1,292 @@
+// LAMMPS data files and ESyS-Particle LSMGeometry files (declared in sample/formats.hpp).
+#include <algorithm>
+#include <array>
+
+#include <fmt/format.h>
+
+#include "core/units.hpp"
+#include "rupture/version.hpp"
+#include "sample/formats.hpp"
+#include "sample/generator.hpp"
+#include "sample/text_reader.hpp"
+
+namespace rupture {
+
+using sample_detail::SampleAssembler;
+using sample_detail::TextReader;
+
+namespace {
+// The title line marks files rupture wrote, whose atom types are its glued groups.
+constexpr std::string_view lammps_title = "LAMMPS data file: rupture sample";
+
+bool starts_with_letter(std::string_view line) {
+  return !line.empty() && ((line[0] >= 'A' && line[0] <= 'Z') || (line[0] >= 'a' && line[0] <= 'z'));
+}
+
+// Column positions of one LAMMPS atom style.
+struct AtomLayout {
+  int id = 0, type = 1, x = 2, diameter = -1, density = -1;
+  std::size_t columns = 0;
+};
+
+AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>& style) {
+  const std::string supported = "supported: 'hybrid sphere bond', 'hybrid bond sphere', 'bpm/sphere', 'sphere'";
+  if (style.empty())
+    in.fail("the Atoms section does not name its atom style", "write it as a comment: 'Atoms # hybrid sphere bond'");
+  AtomLayout layout;
+  if (style[0] == "bpm/sphere") return {0, 2, 5, 3, 4, 8};
+  if (style[0] == "sphere") return {0, 1, 4, 2, 3, 7};
+  if (style[0] != "hybrid") in.fail(fmt::format("atom style '{}' has no particle radius", style[0]), supported);
+  int column = 5;  // id type x y z, then each sub-style's own columns in order
+  for (std::size_t k = 1; k < style.size(); ++k) {
+    const auto sub = style[k];
+    if (sub == "sphere") {
+      layout.diameter = column;
+      layout.density = column + 1;
+      column += 2;
+    } else if (sub == "bond" || sub == "angle" || sub == "molecular") {
+      column += 1;  // molecule-ID
+    } else if (sub == "charge") {
+      column += 1;  // q
+    } else if (sub == "full") {
+      column += 2;  // molecule-ID q
+    } else {
+      in.fail(fmt::format("hybrid sub-style '{}' is not supported", sub), supported);
+    }
+  }
+  if (layout.diameter < 0) in.fail("the hybrid atom style has no 'sphere' part, so no radius", supported);
+  layout.columns = static_cast<std::size_t>(column);
+  return layout;
+}
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// LAMMPS
+
+std::string format_lammps_data(const Sample& sample, LammpsAtomStyle style) {
+  fmt::memory_buffer out;
+  auto it = std::back_inserter(out);
+  fmt::format_to(it, "{} written by rupture {}; lengths mm, density g/mm^3, atom-ID = rupture id + 1, atom types 1 "
+                     "free 2 bottom 3 top\n\n",
+                 lammps_title, version_string);
+  fmt::format_to(it, "{} atoms\n3 atom types\n{} bonds\n1 bond types\n\n", sample.size(), sample.bonds.size());
+  const Box& b = sample.box;
+  fmt::format_to(it, "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n", b.lower.x, b.upper.x, b.lower.y, b.upper.y,
+                 b.lower.z, b.upper.z);
+  const bool bpm = style == LammpsAtomStyle::bpm_sphere;
+  fmt::format_to(it, "Atoms # {}\n\n", bpm ? "bpm/sphere" : "hybrid sphere bond");
+  for (const auto k : sample_detail::id_order(sample)) {
+    const std::int64_t atom_id = sample.id[k] + 1;
+    if (atom_id < 1)
+      throw InputError("LAMMPS export", fmt::format("particle id {} would give LAMMPS atom-ID {} < 1", sample.id[k], atom_id),
+                       "renumber the sample's ids from 0 (e.g. through the own format) first");
+    const int type = 1 + static_cast<int>(sample.group[k]);
+    const Vec3& p = sample.position[k];
+    const double diameter = 2.0 * sample.radius[k];
+    if (bpm)
+      fmt::format_to(it, "{} 1 {} {} {} {} {} {}\n", atom_id, type, diameter, sample.density, p.x, p.y, p.z);
+    else
+      fmt::format_to(it, "{} {} {} {} {} {} {} 1\n", atom_id, type, p.x, p.y, p.z, diameter, sample.density);
+  }
+  if (!sample.bonds.empty()) {
+    fmt::format_to(it, "\nBonds\n\n");
+    std::size_t bond_id = 1;
+    for (const auto& bond : sample_detail::bonds_by_id(sample))
+      fmt::format_to(it, "{} 1 {} {}\n", bond_id++, bond.a + 1, bond.b + 1);
+  }
+  return fmt::to_string(out);
+}
+
+Sample parse_lammps_data(std::string_view text, const std::string& source) {
+  // The first line is a free title (it may contain '#'); the rest has '#' comments.
+  const auto title = text.substr(0, text.find('\n'));
+  const bool written_by_rupture = title.starts_with(lammps_title);
+  TextReader in(text, source, '#');
+  std::string_view line;
+  in.next(line);  // the title
+
+  std::size_t atoms = 0, bonds = 0;
+  bool have_atoms = false;
+  std::array<bool, 3> have_bounds{};
+  Box box;
+  std::string_view section;  // the current section header line; empty at the end of the file
+  while (in.next(line)) {
+    if (starts_with_letter(line)) {
+      section = line;
+      break;
+    }
+    const auto words = TextReader::split(line);
+    if (words.size() == 2 && words[1] == "atoms") {
+      atoms = in.count(words[0], "atom count");
+      have_atoms = true;
+    } else if (words.size() == 2 && words[1] == "bonds") {
+      bonds = in.count(words[0], "bond count");
+    } else if (words.size() == 4 && words[2].size() == 3 && words[2].substr(1) == "lo" && words[3].substr(1) == "hi") {
+      const int axis = words[2][0] - 'x';
+      if (axis < 0 || axis > 2) in.fail(fmt::format("unknown bounds keyword '{}'", words[2]));
+      const double lo = in.real(words[0], "lower bound"), hi = in.real(words[1], "upper bound");
+      if (!(hi > lo)) in.fail(fmt::format("{} bounds {} {} are empty", words[2], lo, hi));
+      (axis == 0 ? box.lower.x : axis == 1 ? box.lower.y : box.lower.z) = lo;
+      (axis == 0 ? box.upper.x : axis == 1 ? box.upper.y : box.upper.z) = hi;
+      have_bounds[static_cast<std::size_t>(axis)] = true;
+    } else if (words.size() >= 4 && words[3] == "yz") {
+      in.fail("triclinic boxes are not supported", "write the data file from an orthogonal box");
+    }
+    // Other header lines (angles, type counts, extra per-atom counts, ...) do not concern a sample.
+  }
+  if (!have_atoms) in.fail("no 'N atoms' line in the header: this is not a LAMMPS data file");
+  if (!(have_bounds[0] && have_bounds[1] && have_bounds[2]))
+    in.fail("the header lacks one of the 'xlo xhi', 'ylo yhi', 'zlo zhi' lines");
+
+  // Each section: a header line starting with a letter, then data lines up to the next header.
+  // Returns the next header, or an empty view at the end of the file.
+  const auto for_each_data_line = [&](auto&& use) -> std::string_view {
+    std::string_view data;
+    while (in.next(data)) {
+      if (starts_with_letter(data)) return data;
+      use(TextReader::split(data));
+    }
+    return {};
+  };
+  SampleAssembler build;
+  build.sample.box = box;
+  double mass = 0.0, volume = 0.0;  // the sample's one density is the mean over its atoms (g/mm^3)
+  bool have_atoms_section = false;
+  std::size_t atoms_read = 0, bonds_read = 0;
+  while (!section.empty()) {
+    const auto name = TextReader::split(section)[0];
+    if (name == "Atoms") {
+      have_atoms_section = true;
+      const std::string_view header = in.raw_line();
+      const auto hash = header.find('#');
+      const auto style_text = hash == std::string_view::npos ? std::string_view{} : header.substr(hash + 1);
+      const AtomLayout layout = atom_layout(in, TextReader::split(style_text));
+      section = for_each_data_line([&](const std::vector<std::string_view>& words) {
+        if (words.size() != layout.columns && words.size() != layout.columns + 3)
+          in.fail(fmt::format("{} columns where atom style '{}' has {} (or {} with image flags)", words.size(),
+                              TextReader::trim(style_text), layout.columns, layout.columns + 3));
+        const auto column = [&](int k) { return words[static_cast<std::size_t>(k)]; };
+        const auto atom_id = in.integer(column(layout.id), "atom-ID");
+        const double diameter = in.real(column(layout.diameter), "diameter");
+        if (!(diameter > 0.0))
+          in.fail(fmt::format("atom {} has diameter {}", atom_id, diameter), "give every atom a diameter > 0");
+        const double density = in.real(column(layout.density), "density");
+        const auto type = in.integer(column(layout.type), "atom-type");
+        ParticleGroup group = ParticleGroup::free;
+        if (written_by_rupture) {
+          if (type < 1 || type > 3) in.fail(fmt::format("atom type {} is not 1, 2 or 3 (free, bottom, top)", type));
+          group = static_cast<ParticleGroup>(type - 1);
+        }
+        const double radius = 0.5 * diameter;
+        build.add_particle(in, atom_id - 1,
+                           {in.real(column(layout.x), "x"), in.real(column(layout.x + 1), "y"),
+                            in.real(column(layout.x + 2), "z")},
+                           radius, group);
+        volume += units::sphere_volume(radius);
+        mass += density * units::sphere_volume(radius);
+        ++atoms_read;
+      });
+    } else if (name == "Bonds") {
+      if (!have_atoms_section) in.fail("the Bonds section comes before Atoms", "put the Atoms section first");
+      section = for_each_data_line([&](const std::vector<std::string_view>& words) {
+        in.expect_columns(words, 4, "bond-ID bond-type atom1 atom2");
+        build.add_bond(in, in.integer(words[2], "atom1") - 1, in.integer(words[3], "atom2") - 1);
+        ++bonds_read;
+      });
+    } else {
+      section = for_each_data_line([](const auto&) {});  // Masses, Velocities, coefficients, ...
+    }
+  }
+  if (atoms_read != atoms)
+    in.fail(fmt::format("the file has {} atom lines but its header says {} atoms", atoms_read, atoms),
+            "the file is truncated or its header is wrong");
+  if (bonds_read != bonds)
+    in.fail(fmt::format("the file has {} bond lines but its header says {} bonds", bonds_read, bonds),
+            "the file is truncated or its header is wrong");
+  Sample sample = build.finish();
+  sample.density = volume > 0.0 ? mass / volume : sample.density;
+  if (!written_by_rupture) assign_glued_layers(sample);
+  sample.provenance.push_back(fmt::format("imported from LAMMPS data file {}", source));
+  return sample;
+}
+
+// ---------------------------------------------------------------------------------------------
+// LSMGeometry 1.2
+
+std::string format_lsm_geometry(const Sample& sample) {
+  fmt::memory_buffer out;
+  auto it = std::back_inserter(out);
+  const Box& b = sample.box;
+  fmt::format_to(it, "LSMGeometry 1.2\nBoundingBox {} {} {} {} {} {}\nPeriodicBoundaries 0 0 0\nDimension 3D\n",
+                 b.lower.x, b.lower.y, b.lower.z, b.upper.x, b.upper.y, b.upper.z);
+  fmt::format_to(it, "BeginParticles\nSimple\n{}\n", sample.size());
+  for (const auto k : sample_detail::id_order(sample)) {
+    const Vec3& p = sample.position[k];
+    fmt::format_to(it, "{} {} {} {} {} {}\n", p.x, p.y, p.z, sample.radius[k], sample.id[k],
+                   static_cast<int>(sample.group[k]));
+  }
+  fmt::format_to(it, "EndParticles\nBeginConnect\n{}\n", sample.bonds.size());
+  for (const auto& bond : sample_detail::bonds_by_id(sample)) fmt::format_to(it, "{} {} 0\n", bond.a, bond.b);
+  fmt::format_to(it, "EndConnect\n");
+  return fmt::to_string(out);
+}
+
+Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
+  TextReader in(text, source, 0);
+  const auto keyword = [&](std::string_view what) {
+    const auto line = in.require(fmt::format("'{}'", what));
+    if (line != what) in.fail(fmt::format("expected '{}', found '{}'", what, line));
+  };
+  auto words = TextReader::split(in.require("'LSMGeometry 1.2'"));
+  if (words.size() != 2 || words[0] != "LSMGeometry") in.fail("not an LSMGeometry file");
+  if (words[1] != "1.2" && words[1] != "1.1")
+    in.fail(fmt::format("LSMGeometry version {} is not supported", words[1]), "write the file as version 1.2");
+  SampleAssembler build;
+  std::string_view line;
+  for (;;) {
+    line = in.require("'BeginParticles'");
+    words = TextReader::split(line);
+    if (words[0] == "BeginParticles") break;
+    if (words[0] == "BoundingBox") {
+      in.expect_columns(words, 7, "BoundingBox xmin ymin zmin xmax ymax zmax");
+      Box& box = build.sample.box;
+      box.lower = {in.real(words[1], "xmin"), in.real(words[2], "ymin"), in.real(words[3], "zmin")};
+      box.upper = {in.real(words[4], "xmax"), in.real(words[5], "ymax"), in.real(words[6], "zmax")};
+    } else if (words[0] == "PeriodicBoundaries") {
+      for (std::size_t k = 1; k < words.size(); ++k)
+        if (words[k] != "0") in.fail("periodic boundaries are not supported", "generate the geometry without periodicity");
+    } else if (words[0] == "Dimension" || words[0] == "Dimensions") {
+      if (words.size() < 2 || words[1] != "3D") in.fail("only 3D geometries can be samples", "generate a 3D geometry");
+    } else {
+      in.fail(fmt::format("unknown header line '{}'", line));
+    }
+  }
+  keyword("Simple");
+  const auto particles = in.count(in.require("the particle count"), "particle count");
+  for (std::size_t k = 0; k < particles; ++k) {
+    words = TextReader::split(in.require(fmt::format("particle {} of {}", k + 1, particles)));
+    if (words.size() != 6) in.fail(fmt::format("{} columns where 6 were expected (x y z r id tag)", words.size()));
+    build.add_particle(in, in.integer(words[4], "id"),
+                       {in.real(words[0], "x"), in.real(words[1], "y"), in.real(words[2], "z")}, in.radius(words[3]));
+  }
+  keyword("EndParticles");
+  if (in.next(line)) {
+    if (line != "BeginConnect") in.fail(fmt::format("expected 'BeginConnect', found '{}'", line));
+    const auto bonds = in.count(in.require("the connection count"), "connection count");
+    for (std::size_t k = 0; k < bonds; ++k) {
+      words = TextReader::split(in.require(fmt::format("connection {} of {}", k + 1, bonds)));
+      if (words.size() != 3) in.fail(fmt::format("{} columns where 3 were expected (id1 id2 tag)", words.size()));
+      build.add_bond(in, in.integer(words[0], "id1"), in.integer(words[1], "id2"));
+    }
+    keyword("EndConnect");
+  }
+  const Box& box = build.sample.box;
+  if (!(box.upper.x > box.lower.x && box.upper.y > box.lower.y && box.upper.z > box.lower.z))
+    throw InputError(source, "no valid BoundingBox line", "add 'BoundingBox xmin ymin zmin xmax ymax zmax'");
+  Sample sample = build.finish();
+  assign_glued_layers(sample);
+  sample.provenance.push_back(fmt::format("imported from LSMGeometry file {}", source));
+  return sample;
+}
+
+}  // namespace rupture
