@@ -1,0 +1,110 @@
+// analysis: reads a loading curve's precursor of failure (paper section 4): filters F and E_e with
+// one zero-phase filter, differentiates E_e, fits the maxima (x_c, x_p, x_m), infers δ_x = x_c − x_p
+// by Bayesian inversion, derives Γ, A_r and the FBM exponent α they imply, decides acceptance and
+// classifies the breaking mechanism. The live counterpart is monitor.hpp.
+// Owns: the numerics on columns of doubles. Not: files — callers read CSV into io::CsvTable and write
+// the JSON this returns (src/cli/analyze_command.cpp).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/delay.hpp"
+#include "analysis/filters.hpp"
+#include "analysis/mechanism.hpp"
+#include "analysis/peak_fit.hpp"
+#include "analysis/resample.hpp"
+#include "io/csv.hpp"
+
+namespace rupture::analysis {
+
+// Which columns hold strain, force and elastic energy, and how to scale them. Empty names mean the
+// names rupture writes: strain; force, else force_top; elastic_energy.
+struct ColumnChoice {
+  std::string strain, force, energy;
+  double strain_scale = 1.0, force_scale = 1.0, energy_scale = 1.0;  // multiply the column by this
+  std::string strain_unit, force_unit, energy_unit;  // unit after scaling; empty = the header's
+};
+
+// The three columns of one loading curve, scaled, in file order.
+struct Curve {
+  std::string source;
+  std::vector<double> strain, force, energy;
+  std::string strain_unit, force_unit, energy_unit;
+  std::string strain_column, force_column, energy_column;  // header fields used
+};
+
+// Picks and checks the columns; throws InputError naming the file, line and column for a missing
+// column or a non-finite value.
+Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice = {});
+
+// Strains of the bond breaks in a `breaks.csv` (column `strain`), multiplied by `scale`.
+std::vector<double> select_break_strains(const io::CsvTable& breaks, double scale = 1.0);
+
+struct AcceptanceRules {
+  double min_prominence = 0.1;       // F and ℰ peaks must rise this fraction of their height above their bases
+  double competing_maximum = 0.9;    // reject if another significant force maximum reaches this fraction of F_c
+  double max_relative_delay_sd = 0.25;  // reject if sd(δ_x) exceeds this fraction of x_c
+};
+
+struct AnalysisOptions {
+  FilterSettings filter;
+  int derivative_window = 0;  // samples (odd) of the cubic Savitzky–Golay derivative; 0 = from the filter
+  PeakFitOptions peak;
+  DelayOptions delay;
+  AcceptanceRules acceptance;
+  MechanismRules mechanism;
+};
+
+// A measured number with its 1-sigma uncertainty (0 when not estimated) and unit.
+struct Measured {
+  double value = 0.0, error = 0.0;
+  std::string unit;
+};
+
+struct AlphaEstimate {
+  std::optional<double> alpha, alpha_low, alpha_high;  // from δ_x/x_p and its 68 % interval (eq. 18)
+  double gamma_band_low = 0.0, gamma_band_high = 0.0;  // Γ(α) over 0 <= α <= 5
+  double energy_ratio_band_low = 0.0, energy_ratio_band_high = 0.0;  // A_r(α) over 0 <= α <= 5
+  std::optional<bool> gamma_in_band, energy_ratio_in_band;
+};
+
+struct AnalysisResult {
+  std::string source;
+  ResampleReport resample;
+  FilterSettings filter;           // with the automatic choices filled in
+  int derivative_window = 0;
+  double force_noise = 0.0, energy_noise = 0.0;  // σ̂ of the raw curves (third differences)
+  std::optional<PeakFit> force_peak, energy_peak, rate_peak;  // x_c/F_c, x_m/E_max, x_p/ℰ_max
+  std::optional<Measured> x_c, F_c, x_m, E_max, x_p, Erate_max;
+  std::optional<DelayPosterior> delay;
+  std::optional<Measured> delta_x, Gamma, A_r;  // δ_x: posterior mean ± sd
+  std::optional<Measured> delta_x_direct;        // x_c − x_p from the peak fits, for comparison
+  AlphaEstimate alpha;
+  MechanismFeatures features;
+  std::optional<MechanismClass> mechanism;
+  int force_maxima = 0;
+  bool accepted = false;
+  std::string rejection;           // why not accepted
+  std::string strain_unit, force_unit, energy_unit;
+  std::vector<double> filtered_force, filtered_energy, energy_rate;  // on the uniform grid
+  double x0 = 0.0, step = 0.0;
+};
+
+// Fewest rows the pipeline accepts with these options.
+std::size_t minimum_rows(const AnalysisOptions& options);
+
+// Runs the whole pipeline. `break_strains` may be empty. Throws InputError when the curve has
+// fewer distinct strains than minimum_rows() (naming the source). Rejections are not errors: they
+// come back with accepted = false and the reason.
+AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const std::vector<double>& break_strains = {});
+
+// Everything in the result except the grid curves, each number as {value, error, unit}; the
+// posterior as arrays.
+nlohmann::json to_json(const AnalysisResult& result);
+
+}  // namespace rupture::analysis

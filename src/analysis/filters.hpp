@@ -1,0 +1,87 @@
+// analysis/filters: the zero-phase low-pass filters applied to loading curves, the Savitzky–Golay
+// derivative, and the noise statistics that choose their strength. Not: resampling or peak logic.
+// Both filters follow SciPy's conventions exactly (savgol_filter mode='interp'; butter + sosfiltfilt
+// with padtype='odd' and the default pad length) so that tests compare against SciPy's output.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace rupture::analysis {
+
+// --- Savitzky–Golay ---------------------------------------------------------------------------
+// Weights w[j], j = 0..window-1, such that sum_j w[j] y[j] is the `deriv`-th derivative (per sample
+// spacing) at window position `position` of the degree-`order` least-squares polynomial through
+// the window. Requires order < window and deriv <= order.
+std::vector<double> savgol_coefficients(int window, int order, int deriv, double position);
+
+// The Savitzky–Golay filter of `y` (sample spacing `delta`): interior points use the centred
+// weights, the first and last window/2 points the polynomial fitted to the first/last window
+// (SciPy's mode='interp'). window must be odd and <= y.size().
+std::vector<double> savgol_filter(std::span<const double> y, int window, int order, int deriv = 0,
+                                  double delta = 1.0);
+
+// --- Butterworth, second-order sections ---------------------------------------------------------
+// One biquad, a0 = 1: y = b0 x + z0, z0 = b1 x - a1 y + z1, z1 = b2 x - a2 y (direct form II transposed).
+struct Biquad {
+  double b0, b1, b2, a1, a2;
+};
+
+// Digital Butterworth low-pass of `order` with cutoff `cutoff` in units of the Nyquist frequency
+// (0 < cutoff < 1), designed as SciPy's butter(order, cutoff, output='sos') does (bilinear transform
+// with pre-warping; overall gain in the first section).
+std::vector<Biquad> butterworth_lowpass(int order, double cutoff);
+
+// Samples added at each end by sosfiltfilt's odd extension (SciPy's default padlen).
+std::size_t sosfiltfilt_padding(std::span<const Biquad> sections);
+
+// Forward-backward (zero-phase) filtering as SciPy's sosfiltfilt: odd extension by
+// sosfiltfilt_padding() samples, steady-state initial conditions scaled by the first sample.
+// Requires y.size() > sosfiltfilt_padding(sections).
+std::vector<double> sosfiltfilt(std::span<const Biquad> sections, std::span<const double> y);
+
+// --- noise --------------------------------------------------------------------------------------
+// Standard deviation of white noise on a smooth curve, from the median absolute third difference
+// (which cancels any quadratic trend): sigma = 1.4826 * median|Δ³y| / sqrt(20). Robust to outliers.
+double noise_from_differences(std::span<const double> y);
+
+// Robust scale of a residual: 1.4826 * median|r| (the standard deviation for Gaussian noise).
+double robust_scale(std::span<const double> residual);
+
+// Integrated autocorrelation length of a residual, 1 + 2 sum_k rho_k summed while rho_k > 0.05
+// (at most n/10 lags), at least 1: the number of consecutive samples that carry one independent
+// sample's worth of information. Used to keep likelihoods and fit errors honest on oversampled data.
+double correlation_length(std::span<const double> residual);
+
+// --- the configurable smoothing stage ----------------------------------------------------------
+enum class FilterKind { butterworth, savitzky_golay, none };
+
+struct FilterSettings {
+  FilterKind kind = FilterKind::butterworth;
+  int butterworth_order = 4;
+  double cutoff = 0.0;        // Nyquist units; 0 = choose from the noise level
+  int savgol_window = 0;      // samples (odd); 0 = choose from the noise level
+  int savgol_order = 3;
+  double discrepancy = 0.1;   // auto choice: allowed excess of the residual variance over sigma^2
+};
+
+// Applies the filter. For an automatic setting, picks the strongest smoothing whose residual
+// variance mean((y - filtered)^2) stays within (1 + discrepancy) sigma^2 of the noise variance
+// estimated by noise_from_differences (Morozov's discrepancy principle): stronger smoothing would
+// start to eat the signal. The chosen cutoff/window is written back into `settings`.
+std::vector<double> apply_filter(FilterSettings& settings, std::span<const double> y);
+
+// The automatic choice for several curves that must share one filter: the strongest of the
+// per-curve choices, so that the noisiest curve sets it (a smooth curve, e.g. E_e beside a noisy F,
+// would otherwise leave F unsmoothed; a low-pass that suits F's features suits E_e's, which are no
+// narrower). Fills in `settings`.
+void choose_shared_filter(FilterSettings& settings, std::span<const std::span<const double>> curves);
+
+// Minimum number of samples the filter needs.
+std::size_t minimum_samples(const FilterSettings& settings);
+
+const char* to_string(FilterKind kind);
+
+}  // namespace rupture::analysis

@@ -1,0 +1,43 @@
+// analysis/peak_fit: where a noisy maximum is — a cubic least-squares fit around the largest sample
+// and its stationary point (paper section 4, Figure 4) — and how many significant maxima a curve
+// has. Not: filtering (the input is usually already filtered) or acceptance decisions.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rupture::analysis {
+
+struct PeakFitOptions {
+  // The fit window is the contiguous run of samples around the largest one with
+  // y >= y_max - drop * |y_max|, so it follows the width of the peak; at least `min_side` samples
+  // on each side of the maximum.
+  double drop = 0.05;
+  std::size_t min_side = 3;
+};
+
+struct PeakFit {
+  bool found = false;
+  std::string problem;               // why not found
+  double x = 0.0, value = 0.0;       // stationary point of the cubic and the cubic's value there
+  double x_error = 0.0, value_error = 0.0;  // 1-sigma, from the fit's covariance (see fit_peak)
+  double window_low = 0.0, window_high = 0.0;  // strain range of the fit
+  std::size_t points = 0;            // samples in the fit
+  std::size_t index = 0;             // index of the largest sample
+};
+
+// Fits a cubic to (x, y) around the largest y. `noise` is the per-sample standard deviation of the
+// unfiltered data and `correlation` its correlation length in samples (filters::correlation_length):
+// the errors are those of a least-squares fit to data with that noise, inflated by the correlation
+// length (consecutive samples are not independent). x must be increasing.
+PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double noise, double correlation,
+                 const PeakFitOptions& options = {});
+
+// Indices of the local maxima of y whose topographic prominence (height above the higher of the
+// two lowest points separating it from any higher sample, or from the ends) is at least
+// `min_prominence`, in increasing index order.
+std::vector<std::size_t> significant_maxima(std::span<const double> y, double min_prominence);
+
+}  // namespace rupture::analysis

@@ -1,0 +1,142 @@
+// Filters and Savitzky–Golay weights against SciPy's output (fixtures from data/make_fixtures.py),
+// plus the properties the pipeline relies on.
+#include "analysis/filters.hpp"
+
+#include <cmath>
+#include <complex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/random.hpp"
+#include "io/csv.hpp"
+
+namespace rupture::analysis {
+namespace {
+
+const std::string data_dir = ANALYSIS_DATA_DIR;
+
+struct Fixture {
+  io::CsvTable input = io::read_csv(data_dir + "filters_input.csv");
+  io::CsvTable expected = io::read_csv(data_dir + "filters_expected.csv");
+  const std::vector<double>& y() const { return input.column("y"); }
+  double step() const { return input.column("x")[1] - input.column("x")[0]; }
+};
+
+void expect_close(const std::vector<double>& actual, const std::vector<double>& expected, double tolerance,
+                  const std::string& what) {
+  ASSERT_EQ(actual.size(), expected.size()) << what;
+  double scale = 0.0;
+  for (double v : expected) scale = std::max(scale, std::abs(v));
+  for (std::size_t i = 0; i < actual.size(); ++i) {
+    ASSERT_NEAR(actual[i], expected[i], tolerance * scale) << what << " at sample " << i;
+  }
+}
+
+TEST(SavitzkyGolay, SmoothingMatchesScipy) {
+  const Fixture f;
+  for (auto [w, p] : {std::pair{11, 3}, {21, 2}, {7, 3}}) {
+    const auto name = "sg_" + std::to_string(w) + "_" + std::to_string(p);
+    expect_close(savgol_filter(f.y(), w, p), f.expected.column(name), 1e-12, name);
+  }
+}
+
+TEST(SavitzkyGolay, DerivativesMatchScipy) {
+  const Fixture f;
+  for (auto [w, p] : {std::pair{15, 3}, {9, 3}}) {
+    const auto name = "sgd1_" + std::to_string(w) + "_" + std::to_string(p);
+    expect_close(savgol_filter(f.y(), w, p, 1, f.step()), f.expected.column(name), 1e-11, name);
+  }
+  expect_close(savgol_filter(f.y(), 13, 4, 2, f.step()), f.expected.column("sgd2_13_4"), 1e-10, "sgd2_13_4");
+}
+
+TEST(SavitzkyGolay, CubicDerivativeIsExactForCubics) {
+  std::vector<double> y(50);
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double x = 0.1 * static_cast<double>(i);
+    y[i] = 2.0 - x + 0.5 * x * x - 0.25 * x * x * x;
+  }
+  const auto d = savgol_filter(y, 9, 3, 1, 0.1);
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double x = 0.1 * static_cast<double>(i);
+    EXPECT_NEAR(d[i], -1.0 + x - 0.75 * x * x, 1e-10) << i;
+  }
+}
+
+TEST(Butterworth, DesignMatchesScipyTransferFunction) {
+  const auto table = io::read_csv(data_dir + "butter_sos.csv");
+  for (auto [order, cutoff] : {std::pair{4, 0.1}, {3, 0.25}, {2, 0.05}, {6, 0.4}}) {
+    const auto ours = butterworth_lowpass(order, cutoff);
+    // Compare the cascade's frequency response (section order and pairing are free choices).
+    for (double omega : {0.0, 0.3, 1.0, 2.0, 3.0}) {
+      const std::complex<double> z = std::exp(std::complex<double>(0.0, -omega));
+      std::complex<double> h_ours = 1.0, h_scipy = 1.0;
+      for (const auto& s : ours) h_ours *= (s.b0 + s.b1 * z + s.b2 * z * z) / (1.0 + s.a1 * z + s.a2 * z * z);
+      for (std::size_t r = 0; r < table.rows(); ++r) {
+        if (table.column("order")[r] != order || table.column("cutoff")[r] != cutoff) continue;
+        const auto c = [&](const char* name) { return table.column(name)[r]; };
+        h_scipy *= (c("b0") + c("b1") * z + c("b2") * z * z) / (c("a0") + c("a1") * z + c("a2") * z * z);
+      }
+      EXPECT_NEAR(std::abs(h_ours - h_scipy), 0.0, 1e-12) << "order " << order << " cutoff " << cutoff << " omega " << omega;
+    }
+    // Half power at the cutoff: |H(e^{iπ Wn})|² = 1/2.
+    const std::complex<double> z = std::exp(std::complex<double>(0.0, -3.14159265358979323846 * cutoff));
+    std::complex<double> h = 1.0;
+    for (const auto& s : ours) h *= (s.b0 + s.b1 * z + s.b2 * z * z) / (1.0 + s.a1 * z + s.a2 * z * z);
+    EXPECT_NEAR(std::norm(h), 0.5, 1e-12);
+  }
+}
+
+TEST(Butterworth, SosfiltfiltMatchesScipy) {
+  const Fixture f;
+  for (auto [order, cutoff, name] : {std::tuple{4, 0.1, "bw_4_0.1"}, {3, 0.25, "bw_3_0.25"}, {2, 0.05, "bw_2_0.05"},
+                                     {6, 0.4, "bw_6_0.4"}}) {
+    const auto sections = butterworth_lowpass(order, cutoff);
+    expect_close(sosfiltfilt(sections, f.y()), f.expected.column(name), 1e-10, name);
+  }
+}
+
+TEST(Noise, DifferenceEstimatorRecoversWhiteNoiseOnATrend) {
+  Rng rng(7, RandomStream::analysis_noise);
+  std::vector<double> y(20000);
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double x = static_cast<double>(i) / static_cast<double>(y.size());
+    y[i] = 3.0 * x * (1.0 - x) + 0.01 * rng.normal();
+  }
+  EXPECT_NEAR(noise_from_differences(y), 0.01, 0.0005);
+  std::vector<double> white(20000);
+  for (auto& v : white) v = 0.5 * rng.normal();
+  EXPECT_NEAR(robust_scale(white), 0.5, 0.02);
+  EXPECT_LT(correlation_length(white), 1.2);
+  // A moving average over 9 samples: correlation length 9.
+  std::vector<double> smooth(white.size() - 8);
+  for (std::size_t i = 0; i < smooth.size(); ++i) {
+    for (std::size_t k = 0; k < 9; ++k) smooth[i] += white[i + k];
+  }
+  EXPECT_NEAR(correlation_length(smooth), 9.0, 1.5);
+}
+
+TEST(AutomaticFilter, SmoothsNoiseButKeepsThePeak) {
+  Rng rng(11, RandomStream::analysis_noise);
+  const std::size_t n = 2000;
+  std::vector<double> clean(n), noisy(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i) / static_cast<double>(n - 1);
+    clean[i] = x * (1.0 - x);
+    noisy[i] = clean[i] + 0.002 * rng.normal();
+  }
+  for (auto kind : {FilterKind::butterworth, FilterKind::savitzky_golay}) {
+    FilterSettings settings;
+    settings.kind = kind;
+    const auto filtered = apply_filter(settings, noisy);
+    double square = 0.0;
+    for (std::size_t i = 0; i < n; ++i) square += (filtered[i] - clean[i]) * (filtered[i] - clean[i]);
+    // The filtered curve is much closer to the truth than the noise level (0.002).
+    EXPECT_LT(std::sqrt(square / n), 0.3 * 0.002) << to_string(kind);
+    if (kind == FilterKind::butterworth) EXPECT_LT(settings.cutoff, 0.1);
+    else EXPECT_GT(settings.savgol_window, 31);
+  }
+}
+
+}  // namespace
+}  // namespace rupture::analysis

@@ -1,0 +1,60 @@
+// Synthetic loading curves with known answers for the analysis tests: the FBM power-law bundle
+// (α = 0 is the uniform one) in closed form, finite bundles, and added Gaussian noise.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "analysis/analysis.hpp"
+#include "core/random.hpp"
+
+namespace rupture::analysis::testing {
+
+// Per N κ = 1: F = x (1 − x^(1+α)), E_e = x² (1 − x^(1+α)) / 2 on n points over [0, x_max].
+inline Curve power_law_curve(double alpha, std::size_t n, double x_max = 1.0) {
+  Curve c;
+  c.source = "power_law";
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = x_max * static_cast<double>(i) / static_cast<double>(n - 1);
+    const double survive = 1.0 - std::pow(x, 1.0 + alpha);
+    c.strain.push_back(x);
+    c.force.push_back(x * survive);
+    c.energy.push_back(0.5 * x * x * survive);
+  }
+  return c;
+}
+
+// Strain-controlled finite bundle of `fibers` with uniform thresholds on [0, 1], per N κ = 1,
+// sampled at n strains on [0, 1].
+inline Curve finite_uniform_bundle(std::size_t fibers, std::size_t n, std::uint64_t seed) {
+  Rng rng(seed, RandomStream::analysis_noise, 1);
+  std::vector<double> thresholds(fibers);
+  for (auto& t : thresholds) t = rng.uniform01();
+  std::sort(thresholds.begin(), thresholds.end());
+  Curve c;
+  c.source = "finite_bundle";
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  std::size_t broken = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i) / static_cast<double>(n - 1);
+    while (broken < fibers && thresholds[broken] <= x) ++broken;
+    const double intact = 1.0 - static_cast<double>(broken) / static_cast<double>(fibers);
+    c.strain.push_back(x);
+    c.force.push_back(x * intact);
+    c.energy.push_back(0.5 * x * x * intact);
+  }
+  return c;
+}
+
+inline void add_noise(Curve& c, double force_sigma, double energy_sigma, std::uint64_t seed) {
+  Rng rng(seed, RandomStream::analysis_noise);
+  for (std::size_t i = 0; i < c.strain.size(); ++i) {
+    c.force[i] += force_sigma * rng.normal();
+    c.energy[i] += energy_sigma * rng.normal();
+  }
+}
+
+}  // namespace rupture::analysis::testing
