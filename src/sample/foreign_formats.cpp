@@ -150,7 +150,9 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
   };
   SampleAssembler build;
   build.sample.box = box;
-  double mass = 0.0, volume = 0.0;  // the sample's one density is the mean over its atoms (g/mm^3)
+  // The sample has one density: the atoms' common one, or their mass-weighted mean (g/mm^3).
+  double mass = 0.0, volume = 0.0, common_density = -1.0;
+  bool one_density = true;
   bool have_atoms_section = false;
   std::size_t atoms_read = 0, bonds_read = 0;
   while (!section.empty()) {
@@ -184,6 +186,8 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
                            radius, group);
         volume += units::sphere_volume(radius);
         mass += density * units::sphere_volume(radius);
+        if (common_density < 0.0) common_density = density;
+        one_density = one_density && density == common_density;
         ++atoms_read;
       });
     } else if (name == "Bonds") {
@@ -204,7 +208,8 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
     in.fail(fmt::format("the file has {} bond lines but its header says {} bonds", bonds_read, bonds),
             "the file is truncated or its header is wrong");
   Sample sample = build.finish();
-  sample.density = volume > 0.0 ? mass / volume : sample.density;
+  if (!(mass > 0.0)) in.fail("the atoms have no positive density", "give each atom its density in g/mm^3");
+  sample.density = one_density ? common_density : mass / volume;
   if (!written_by_rupture) assign_glued_layers(sample);
   sample.provenance.push_back(fmt::format("imported from LAMMPS data file {}", source));
   return sample;

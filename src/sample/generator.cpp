@@ -404,19 +404,34 @@ void make_bonds(Sample& sample, double tolerance) {
   const double r_max = *std::max_element(sample.radius.begin(), sample.radius.end());
   CellGrid grid(sample.box, 2.0 * r_max * (1.0 + 0.5 * tolerance));
   for (std::uint32_t i = 0; i < n; ++i) grid.insert(i, sample.position[i]);
-  for (std::uint32_t i = 0; i < n; ++i) {
+  // Bonds of particle i with every j > i in reach. Two passes (count, then fill into each particle's
+  // own slice), each parallel over i: the result does not depend on the number of threads.
+  const auto for_each_partner = [&](std::uint32_t i, auto&& use) {
     const Vec3 pi = sample.position[i];
     const double ri = sample.radius[i];
     grid.for_each_near(pi, [&](std::uint32_t j) {
       if (j <= i) return;
-      const double sum = ri + sample.radius[j];
-      const double reach = sum * (1.0 + 0.5 * tolerance);
+      const double reach = (ri + sample.radius[j]) * (1.0 + 0.5 * tolerance);
       const Vec3 d = sample.position[j] - pi;
-      if (norm2(d) < reach * reach) sample.bonds.push_back({i, j, norm(d)});
+      if (norm2(d) < reach * reach) use(j, norm(d));
     });
+  };
+  std::vector<std::size_t> start(n + 1, 0);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i)
+    for_each_partner(static_cast<std::uint32_t>(i), [&](std::uint32_t, double) { ++start[static_cast<std::size_t>(i) + 1]; });
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  sample.bonds.resize(start[n]);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const auto first = start[static_cast<std::size_t>(i)];
+    auto slot = first;
+    const auto u = static_cast<std::uint32_t>(i);
+    for_each_partner(u, [&](std::uint32_t j, double distance) { sample.bonds[slot++] = {u, j, distance}; });
+    std::sort(sample.bonds.begin() + static_cast<std::ptrdiff_t>(first), sample.bonds.begin() + static_cast<std::ptrdiff_t>(slot),
+              [](const Bond& a, const Bond& b) { return a.j < b.j; });
   }
-  std::sort(sample.bonds.begin(), sample.bonds.end(),
-            [](const Bond& a, const Bond& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
 }
 
 double default_glue_depth(const Sample& sample) {
