@@ -47,9 +47,13 @@ std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string&
   return unit.empty() ? "1" : unit;
 }
 
-std::string per_strain(const std::string& unit, const std::string& strain_unit) {
-  return strain_unit == "1" ? unit : unit + "/" + strain_unit;
+// Unit of a quotient, e.g. "mJ" / "%" -> "mJ/%"; a dimensionless denominator drops out.
+std::string unit_ratio(const std::string& numerator, const std::string& denominator) {
+  if (denominator == "1") return numerator;
+  return numerator + "/" + (denominator.find('/') != std::string::npos ? "(" + denominator + ")" : denominator);
 }
+
+std::string per_strain(const std::string& unit, const std::string& strain_unit) { return unit_ratio(unit, strain_unit); }
 
 // Height of the global maximum above the higher of the lowest points on either side.
 double prominence_of_maximum(std::span<const double> y, std::size_t top) {
@@ -102,21 +106,30 @@ AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p, c
 
 }  // namespace
 
+CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& choice) {
+  CurveColumns c;
+  c.strain = pick_column(table, choice.strain, {"strain"}, "--strain");
+  c.force = pick_column(table, choice.force, {"force", "force_top"}, "--force");
+  c.energy = pick_column(table, choice.energy, {"elastic_energy"}, "--energy");
+  c.strain_unit = unit_of(table, c.strain, choice.strain_unit);
+  c.force_unit = unit_of(table, c.force, choice.force_unit);
+  c.energy_unit = unit_of(table, c.energy, choice.energy_unit);
+  return c;
+}
+
 Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice) {
-  const auto cs = pick_column(table, choice.strain, {"strain"}, "--strain");
-  const auto cf = pick_column(table, choice.force, {"force", "force_top"}, "--force");
-  const auto ce = pick_column(table, choice.energy, {"elastic_energy"}, "--energy");
+  const auto columns = find_curve_columns(table, choice);
   Curve curve;
   curve.source = table.source;
-  curve.strain = scaled_column(table, cs, choice.strain_scale);
-  curve.force = scaled_column(table, cf, choice.force_scale);
-  curve.energy = scaled_column(table, ce, choice.energy_scale);
-  curve.strain_unit = unit_of(table, cs, choice.strain_unit);
-  curve.force_unit = unit_of(table, cf, choice.force_unit);
-  curve.energy_unit = unit_of(table, ce, choice.energy_unit);
-  curve.strain_column = table.header[cs];
-  curve.force_column = table.header[cf];
-  curve.energy_column = table.header[ce];
+  curve.strain = scaled_column(table, columns.strain, choice.strain_scale);
+  curve.force = scaled_column(table, columns.force, choice.force_scale);
+  curve.energy = scaled_column(table, columns.energy, choice.energy_scale);
+  curve.strain_unit = columns.strain_unit;
+  curve.force_unit = columns.force_unit;
+  curve.energy_unit = columns.energy_unit;
+  curve.strain_column = table.header[columns.strain];
+  curve.force_column = table.header[columns.force];
+  curve.energy_column = table.header[columns.energy];
   return curve;
 }
 
@@ -330,7 +343,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
   if (r.filter.kind == FilterKind::butterworth) {
     filter["order"] = r.filter.butterworth_order;
     filter["cutoff_nyquist"] = r.filter.cutoff;
-    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)}, {"unit", "1/" + r.strain_unit}};
+    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)}, {"unit", unit_ratio("1", r.strain_unit)}};
     filter["method"] = "forward-backward second-order sections, odd padding (sosfiltfilt)";
   } else if (r.filter.kind == FilterKind::savitzky_golay) {
     filter["window_samples"] = r.filter.savgol_window;
@@ -362,10 +375,10 @@ nlohmann::json to_json(const AnalysisResult& r) {
                     {"force_noise_sigma", {{"value", d.noise_sigma}, {"unit", r.force_unit}}},
                     {"misfit_scale", {{"value", d.misfit_scale}, {"unit", r.force_unit}}},
                     {"correlation_length_samples", d.correlation},
-                    {"scale_at_map", {{"value", d.scale_at_map}, {"unit", r.force_unit + "/(" + per_strain(r.energy_unit, r.strain_unit) + ")"}}},
+                    {"scale_at_map", {{"value", d.scale_at_map}, {"unit", unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit))}}},
                     {"at_prior_bound", d.at_prior_bound},
                     {"posterior", {{"delta", d.delta}, {"density", d.density},
-                                   {"delta_unit", r.strain_unit}, {"density_unit", "1/" + r.strain_unit}}}};
+                                   {"delta_unit", r.strain_unit}, {"density_unit", unit_ratio("1", r.strain_unit)}}}};
   } else {
     j["delta_x"] = nullptr;
   }

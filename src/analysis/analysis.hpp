@@ -38,6 +38,14 @@ struct Curve {
   std::string strain_column, force_column, energy_column;  // header fields used
 };
 
+// Where the three columns are in a table's header, and their units after scaling. Throws
+// InputError naming the file, the missing column and the option that names it.
+struct CurveColumns {
+  std::size_t strain = 0, force = 0, energy = 0;
+  std::string strain_unit, force_unit, energy_unit;
+};
+CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& choice = {});
+
 // Picks and checks the columns; throws InputError naming the file, line and column for a missing
 // column or a non-finite value.
 Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice = {});

@@ -1,5 +1,162 @@
+// cli/analyze_command: `rupture analyze CURVES.csv` — the precursor analysis of one loading curve
+// (src/analysis): writes analysis.json and prints a short summary. Exit 0 accepted, 4 analysed but
+// rejected (reason printed), 2 bad input.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "analysis/analysis.hpp"
 #include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "rupture/version.hpp"
 
 namespace rupture::cli {
-void add_analyze_command(CLI::App&, int&) {}
+
+namespace {
+
+struct AnalyzeOptions {
+  std::string curves, output, breaks;
+  bool no_breaks = false;
+  analysis::ColumnChoice columns;
+  std::string filter = "butterworth";
+  analysis::AnalysisOptions analysis;
+};
+
+std::string with_error(const analysis::Measured& m) {
+  return m.error > 0.0 ? fmt::format("{:.6g} ± {:.2g} {}", m.value, m.error, m.unit) : fmt::format("{:.6g} {}", m.value, m.unit);
+}
+
+void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output) {
+  fmt::print("{}: {} rows", r.source, r.resample.input_rows);
+  if (r.resample.resampled || !r.resample.was_sorted || r.resample.duplicates_merged > 0) {
+    fmt::print(" ({}{}{} -> {} uniform rows)", r.resample.was_sorted ? "" : "sorted, ",
+               r.resample.duplicates_merged > 0 ? fmt::format("{} duplicates merged, ", r.resample.duplicates_merged) : "",
+               r.resample.resampled ? "resampled" : "uniform", r.resample.output_rows);
+  }
+  fmt::print("\n  filter      {}", analysis::to_string(r.filter.kind));
+  if (r.filter.kind == analysis::FilterKind::butterworth) {
+    fmt::print(" order {}, cutoff {:.4g} x Nyquist", r.filter.butterworth_order, r.filter.cutoff);
+  } else if (r.filter.kind == analysis::FilterKind::savitzky_golay) {
+    fmt::print(" window {}, order {}", r.filter.savgol_window, r.filter.savgol_order);
+  }
+  fmt::print("; derivative window {} samples\n", r.derivative_window);
+  const auto line = [](const char* name, const std::optional<analysis::Measured>& m) {
+    fmt::print("  {:<11} {}\n", name, m ? with_error(*m) : std::string("not found"));
+  };
+  line("x_c", r.x_c);
+  line("F_c", r.F_c);
+  line("x_p", r.x_p);
+  line("Erate_max", r.Erate_max);
+  line("x_m", r.x_m);
+  line("E_max", r.E_max);
+  if (r.delay) {
+    const auto& d = *r.delay;
+    fmt::print("  delta_x     {:.6g} {} (MAP {:.6g}, 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n", d.mean, r.strain_unit,
+               d.map, d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
+  }
+  line("Gamma", r.Gamma);
+  line("A_r", r.A_r);
+  if (r.alpha.alpha) fmt::print("  alpha       {:.3g} (from delta_x/x_p, FBM power law)\n", *r.alpha.alpha);
+  if (r.alpha.gamma_in_band || r.alpha.energy_ratio_in_band) {
+    const auto yes_no = [](const std::optional<bool>& b) { return b ? (*b ? "yes" : "no") : "n/a"; };
+    fmt::print("  FBM band    Gamma in [{:.3g}, {:.3g}]: {}; A_r in [{:.3g}, {:.3g}]: {}\n", r.alpha.gamma_band_low,
+               r.alpha.gamma_band_high, yes_no(r.alpha.gamma_in_band), r.alpha.energy_ratio_band_low,
+               r.alpha.energy_ratio_band_high, yes_no(r.alpha.energy_ratio_in_band));
+  }
+  if (r.mechanism) fmt::print("  mechanism   {} ({})\n", analysis::to_string(r.mechanism->mechanism), r.mechanism->reason);
+  fmt::print("  {}\n", r.accepted ? "accepted" : "REJECTED: " + r.rejection);
+  fmt::print("  wrote {}\n", output.string());
+}
+
+nlohmann::json inputs_json(const AnalyzeOptions& o, const std::string& breaks_used) {
+  const auto& a = o.analysis;
+  return {{"curves", o.curves},
+          {"breaks", breaks_used.empty() ? nlohmann::json(nullptr) : nlohmann::json(breaks_used)},
+          {"columns", {{"strain", o.columns.strain}, {"force", o.columns.force}, {"energy", o.columns.energy}}},
+          {"scales", {{"strain", o.columns.strain_scale}, {"force", o.columns.force_scale}, {"energy", o.columns.energy_scale}}},
+          {"filter", o.filter},
+          {"cutoff", a.filter.cutoff},
+          {"butterworth_order", a.filter.butterworth_order},
+          {"savgol_window", a.filter.savgol_window},
+          {"savgol_order", a.filter.savgol_order},
+          {"derivative_window", a.derivative_window},
+          {"peak_drop", a.peak.drop},
+          {"delay_window_drop", a.delay.window_drop},
+          {"grid_points", a.delay.grid_points}};
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<AnalyzeOptions>();
+  auto* cmd = app.add_subcommand("analyze", "Analyse a loading curve for the precursor of failure (x_c, x_p, delta_x, Gamma, A_r, class)");
+  cmd->add_option("curves", o->curves, "CSV with a header: rupture's curves.csv, an FBM curve, or any table (name the columns)")
+      ->required();
+  cmd->add_option("-o,--output", o->output, "Result file (default: analysis.json beside the curves)");
+  cmd->add_option("--breaks", o->breaks, "Bond-break table with a strain column (default: breaks.csv beside the curves, if present)");
+  cmd->add_flag("--no-breaks", o->no_breaks, "Ignore any breaks.csv");
+  cmd->add_option("--strain", o->columns.strain, "Strain column (default: strain)");
+  cmd->add_option("--force", o->columns.force, "Force column (default: force, else force_top)");
+  cmd->add_option("--energy", o->columns.energy, "Elastic energy column (default: elastic_energy)");
+  cmd->add_option("--strain-scale", o->columns.strain_scale, "Multiply the strain column by this");
+  cmd->add_option("--force-scale", o->columns.force_scale, "Multiply the force column by this");
+  cmd->add_option("--energy-scale", o->columns.energy_scale, "Multiply the energy column by this");
+  cmd->add_option("--strain-unit", o->columns.strain_unit, "Strain unit after scaling (default: from the header)");
+  cmd->add_option("--force-unit", o->columns.force_unit, "Force unit after scaling (default: from the header)");
+  cmd->add_option("--energy-unit", o->columns.energy_unit, "Energy unit after scaling (default: from the header)");
+  cmd->add_option("--filter", o->filter, "Zero-phase low-pass for F and E_e: butterworth | savgol | none")
+      ->check(CLI::IsMember({"butterworth", "savgol", "none"}));
+  cmd->add_option("--cutoff", o->analysis.filter.cutoff, "Butterworth cutoff in units of the Nyquist frequency (0 < c < 1; default: from the noise)")
+      ->check(CLI::Range(0.0, 0.999));
+  cmd->add_option("--order", o->analysis.filter.butterworth_order, "Butterworth order")->check(CLI::Range(1, 12));
+  cmd->add_option("--window", o->analysis.filter.savgol_window, "Savitzky-Golay smoothing window in samples (odd; default: from the noise)");
+  cmd->add_option("--derivative-window", o->analysis.derivative_window, "Samples of the cubic Savitzky-Golay derivative (odd; default: from the filter)");
+  cmd->add_option("--peak-drop", o->analysis.peak.drop, "Peak fits use the samples within this fraction of the maximum")
+      ->check(CLI::Range(0.001, 0.9));
+  cmd->add_option("--delay-window", o->analysis.delay.window_drop, "delta_x misfit over F >= (1 - this) F_c")
+      ->check(CLI::Range(0.01, 0.9));
+  cmd->add_option("--grid-points", o->analysis.delay.grid_points, "Points of the posterior grid")->check(CLI::Range(101, 100001));
+  cmd->callback([o, &exit_code] {
+    auto& a = o->analysis;
+    a.filter.kind = o->filter == "savgol" ? analysis::FilterKind::savitzky_golay
+                    : o->filter == "none" ? analysis::FilterKind::none
+                                          : analysis::FilterKind::butterworth;
+    if (a.filter.savgol_window > 0 && a.filter.savgol_window % 2 == 0) {
+      throw InputError("--window", fmt::format("{} is even", a.filter.savgol_window), "give an odd number of samples");
+    }
+    if (a.derivative_window > 0 && (a.derivative_window % 2 == 0 || a.derivative_window < 5)) {
+      throw InputError("--derivative-window", fmt::format("{} is not an odd number >= 5", a.derivative_window),
+                       "give an odd number of samples, at least 5");
+    }
+    const std::filesystem::path curves_path(o->curves);
+    const auto table = io::read_csv(curves_path);
+    const auto curve = analysis::select_curve(table, o->columns);
+    std::string breaks_path = o->breaks;
+    if (breaks_path.empty() && !o->no_breaks) {
+      const auto beside = curves_path.parent_path() / "breaks.csv";
+      if (std::filesystem::exists(beside)) breaks_path = beside.string();
+    }
+    std::vector<double> break_strains;
+    if (!breaks_path.empty() && !o->no_breaks) {
+      break_strains = analysis::select_break_strains(io::read_csv(breaks_path), o->columns.strain_scale);
+    }
+    const auto result = analysis::analyze_curve(curve, a, break_strains);
+    nlohmann::json document = {{"tool", "rupture analyze"}, {"version", version_string},
+                               {"inputs", inputs_json(*o, breaks_path)}};
+    document.update(analysis::to_json(result));
+    const std::filesystem::path output = o->output.empty() ? curves_path.parent_path() / "analysis.json" : std::filesystem::path(o->output);
+    io::write_json_atomically(output, document);
+    print_summary(result, output);
+    if (!result.accepted) {
+      fmt::print(stderr, "rupture analyze: rejected: {}\n", result.rejection);
+      exit_code = exit_rejected;
+    }
+  });
+}
+
 }  // namespace rupture::cli

@@ -27,12 +27,12 @@ inline Curve power_law_curve(double alpha, std::size_t n, double x_max = 1.0) {
   return c;
 }
 
-// Strain-controlled finite bundle of `fibers` with uniform thresholds on [0, 1], per N κ = 1,
-// sampled at n strains on [0, 1].
-inline Curve finite_uniform_bundle(std::size_t fibers, std::size_t n, std::uint64_t seed) {
+// Strain-controlled finite bundle of `fibers` with power-law thresholds P(x) = x^(1+α) on [0, 1]
+// (α = 0: uniform), per N κ = 1, sampled at n strains on [0, 1].
+inline Curve finite_bundle(double alpha, std::size_t fibers, std::size_t n, std::uint64_t seed) {
   Rng rng(seed, RandomStream::analysis_noise, 1);
   std::vector<double> thresholds(fibers);
-  for (auto& t : thresholds) t = rng.uniform01();
+  for (auto& t : thresholds) t = std::pow(rng.uniform01(), 1.0 / (1.0 + alpha));
   std::sort(thresholds.begin(), thresholds.end());
   Curve c;
   c.source = "finite_bundle";
