@@ -1,0 +1,160 @@
+// `rupture analyze` and `rupture monitor` end to end: exit codes (0 accepted, 4 rejected, 2 bad
+// input), analysis.json with units, and messages that name the file, line and column.
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/tool.hpp"
+#include "synthetic_curves.hpp"
+
+namespace rupture::analysis {
+namespace {
+
+using rupture::testing::run_rupture;
+using rupture::testing::slurp;
+using rupture::testing::TempDir;
+
+// Writes a curve as CSV with the given header names (units included).
+void write_curve(const std::filesystem::path& file, const Curve& c, const std::string& header) {
+  std::ofstream out(file);
+  out << "# synthetic curve\n" << header << "\n";
+  out.precision(17);
+  for (std::size_t i = 0; i < c.strain.size(); ++i) out << c.strain[i] << "," << c.force[i] << "," << c.energy[i] << "\n";
+}
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
+  TempDir dir;
+  auto c = testing::power_law_curve(0.0, 2001);
+  testing::add_noise(c, 0.002, 1e-5, 5);
+  write_curve(dir / "curve.csv", c, "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("analyze " + quoted(dir / "curve.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("accepted"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  EXPECT_TRUE(j["accepted"].get<bool>());
+  EXPECT_EQ(j["x_c"]["unit"], "1");
+  EXPECT_NEAR(j["x_c"]["value"].get<double>(), 0.5, 0.01);
+  EXPECT_NEAR(j["delta_x"]["value"].get<double>(), 1.0 / 6.0, 0.005);
+  EXPECT_GT(j["delta_x"]["error"].get<double>(), 0.0);
+  EXPECT_EQ(j["delta_x"]["posterior"]["delta"].size(), j["delta_x"]["posterior"]["density"].size());
+  EXPECT_EQ(j["filter"]["kind"], "butterworth");
+  EXPECT_TRUE(j.contains("version"));
+  EXPECT_EQ(j["inputs"]["curves"], (dir / "curve.csv").string());
+}
+
+TEST(AnalyzeCli, DemStyleColumnsAndUnitsAreRecognised) {
+  TempDir dir;
+  auto c = testing::power_law_curve(2.0, 1001, 1.2);
+  for (auto& x : c.strain) x *= 10.0;  // a curve in %
+  write_curve(dir / "curves.csv", c, "strain[%],force_top[N],elastic_energy[mJ]");
+  const auto r = run_rupture("analyze " + quoted(dir / "curves.csv") + " -o " + quoted(dir / "out.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "out.json"));
+  EXPECT_EQ(j["x_c"]["unit"], "%");
+  EXPECT_EQ(j["F_c"]["unit"], "N");
+  EXPECT_EQ(j["E_max"]["unit"], "mJ");
+  EXPECT_EQ(j["Erate_max"]["unit"], "mJ/%");
+  EXPECT_NEAR(j["x_c"]["value"].get<double>(), 10.0 * std::pow(0.25, 1.0 / 3.0), 1e-3);
+}
+
+TEST(AnalyzeCli, OtherTablesByNamingColumnsWithScales) {
+  TempDir dir;
+  const auto c = testing::power_law_curve(0.0, 1001);
+  write_curve(dir / "lab.csv", c, "elongation[mm],load[kN],work[J]");
+  const auto missing = run_rupture("analyze " + quoted(dir / "lab.csv"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("no column 'strain'"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("--strain"), std::string::npos) << missing.err;
+  const auto r = run_rupture("analyze " + quoted(dir / "lab.csv") +
+                             " --strain elongation --force load --energy work --strain-scale 4 --strain-unit %");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  EXPECT_EQ(j["x_c"]["unit"], "%");
+  EXPECT_NEAR(j["x_c"]["value"].get<double>(), 2.0, 1e-3);
+  EXPECT_EQ(j["F_c"]["unit"], "kN");
+}
+
+TEST(AnalyzeCli, TextInANumberFieldNamesLineAndColumn) {
+  TempDir dir;
+  std::ofstream(dir / "bad.csv") << "strain[1],force[1],elastic_energy[1]\n0,0,0\n0.1,abc,0.01\n";
+  const auto r = run_rupture("analyze " + quoted(dir / "bad.csv"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad.csv:3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("column 2 ('force[1]')"), std::string::npos) << r.err;
+}
+
+TEST(AnalyzeCli, TooFewPointsForTheFilterIsBadInput) {
+  TempDir dir;
+  write_curve(dir / "short.csv", testing::power_law_curve(0.0, 12), "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("analyze " + quoted(dir / "short.csv"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("12 data rows, the analysis needs at least"), std::string::npos) << r.err;
+}
+
+TEST(AnalyzeCli, MultiPeakedCurveIsRejectedWithExitCode4) {
+  TempDir dir;
+  auto c = testing::power_law_curve(0.0, 2001);
+  for (std::size_t i = 0; i < c.strain.size(); ++i) {
+    const double x = c.strain[i];
+    c.force[i] = std::exp(-std::pow((x - 0.3) / 0.05, 2)) + std::exp(-std::pow((x - 0.6) / 0.05, 2));
+  }
+  write_curve(dir / "two.csv", c, "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("analyze " + quoted(dir / "two.csv"));
+  EXPECT_EQ(r.exit_code, 4) << r.out << r.err;
+  EXPECT_NE(r.err.find("rejected: several force maxima"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  EXPECT_FALSE(j["accepted"].get<bool>());
+  EXPECT_NE(j["rejection"].get<std::string>().find("several force maxima"), std::string::npos);
+}
+
+TEST(MonitorCli, WarnsFromStdinBeforeCriticalStrain) {
+  TempDir dir;
+  write_curve(dir / "curve.csv", testing::power_law_curve(2.0, 2001), "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("monitor --json " + quoted(dir / "monitor.json"), (dir / "curve.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("WARNING at strain"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x_c prediction held"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(dir / "monitor.json"));
+  EXPECT_LT(j["warning"]["strain"].get<double>(), std::pow(0.25, 1.0 / 3.0));
+  EXPECT_TRUE(j["x_c_held"].get<bool>());
+  EXPECT_GT(j["lead"].get<double>(), 0.0);
+}
+
+TEST(MonitorCli, FollowsAGrowingFile) {
+  TempDir dir;
+  const auto c = testing::power_law_curve(2.0, 1201);
+  const auto file = dir / "curves.csv";
+  std::ofstream(file) << "strain[1],force[1],elastic_energy[1]\n";
+  // A writer appends rows in bursts while the monitor follows the file.
+  std::thread writer([&] {
+    for (std::size_t i = 0; i < c.strain.size(); ++i) {
+      std::ofstream out(file, std::ios::app);
+      out.precision(17);
+      out << c.strain[i] << "," << c.force[i] << "," << c.energy[i] << "\n";
+      if (i % 200 == 199) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  const auto r = run_rupture("monitor " + quoted(file) + " --follow --idle-timeout 1 --poll 10");
+  writer.join();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1201 samples read"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("WARNING at strain"), std::string::npos) << r.out;
+}
+
+TEST(MonitorCli, TextInANumberFieldNamesLineAndColumn) {
+  TempDir dir;
+  std::ofstream(dir / "bad.csv") << "# comment\nstrain[1],force[1],elastic_energy[1]\n0,0,0\n0.1,0.1,x\n";
+  const auto r = run_rupture("monitor " + quoted(dir / "bad.csv"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad.csv:4"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("column 3 ('elastic_energy[1]')"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace rupture::analysis
