@@ -1,5 +1,142 @@
+// cli/bench_command: `rupture bench`, whole DEM steps timed on a named sample (intact and with a
+// fraction of its bonds broken) for each thread count: particle-steps per second, the split over
+// the step's stages, bytes per particle and the state hash (equal for every thread count).
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
 #include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "dem/system.hpp"
+#include "loading/ramp.hpp"
+#include "rupture/version.hpp"
+#include "sample/formats.hpp"
+#include "sample/presets.hpp"
 
 namespace rupture::cli {
-void add_bench_command(CLI::App&, int&) {}
+
+namespace {
+
+struct BenchOptions {
+  std::string sample = "tissue";
+  std::vector<int> threads{1, 2};
+  std::vector<double> broken{0.0, 0.5};
+  long steps = 1000;
+  std::uint64_t seed = 1;
+  bool json = false;
+};
+
+struct BenchResult {
+  int threads = 0;
+  double broken_fraction = 0.0;
+  std::size_t particles = 0, bonds = 0, broken = 0;
+  long steps = 0;
+  double wall_s = 0.0;
+  dem::StageTimes stages;
+  std::size_t rebuilds = 0, memory_bytes = 0;
+  std::uint64_t hash = 0;
+  double rate() const { return double(particles) * double(steps) / wall_s; }
+};
+
+Sample bench_sample(const BenchOptions& options) {
+  if (std::filesystem::exists(options.sample)) return load_sample(options.sample);
+  return make_preset(options.sample, options.seed);
+}
+
+// Steps the sample as a run would (default physics, automatic dt, plate at 50 mm/s) with bonds
+// broken beforehand in a seeded random selection, so every thread count sees the same state.
+BenchResult bench_case(const Sample& sample, const BenchOptions& options, int threads, double broken_fraction) {
+  omp_set_num_threads(threads);
+  dem::System system(sample, dem::Params{});
+  for (std::size_t b = 0; b < system.bond_count(); ++b)
+    if (Rng(options.seed, RandomStream::dem_bond_order, b).uniform01() < broken_fraction) system.break_bond(b);
+  system.break_events().clear();
+  const double dt = 0.4 * system.critical_dt();
+  const loading::SpeedRamp plate{50.0, 0.0};
+  long step = 0;
+  for (; step < 20; ++step) system.step(dt, plate.at(double(step + 1) * dt));  // warm caches and lists
+  const dem::StageTimes before = system.stage_times();
+  const std::size_t rebuilds_before = system.neighbour_rebuilds();
+  const auto start = std::chrono::steady_clock::now();
+  for (long s = 0; s < options.steps; ++s, ++step) system.step(dt, plate.at(double(step + 1) * dt));
+  BenchResult r;
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.threads = threads;
+  r.broken_fraction = broken_fraction;
+  r.particles = system.size();
+  r.bonds = system.bond_count();
+  r.broken = system.bond_count() - system.intact_bonds();
+  r.steps = options.steps;
+  const dem::StageTimes& after = system.stage_times();
+  r.stages = {after.neighbours - before.neighbours, after.integrate - before.integrate, after.forces - before.forces,
+              after.plates - before.plates, after.breaks - before.breaks};
+  r.rebuilds = system.neighbour_rebuilds() - rebuilds_before;
+  r.memory_bytes = system.memory_bytes();
+  r.hash = system.state_hash();
+  return r;
+}
+
+nlohmann::json to_json(const BenchResult& r, const std::string& sample) {
+  return {{"sample", sample},
+          {"particles", r.particles},
+          {"bonds", r.bonds},
+          {"broken_bonds", r.broken},
+          {"steps", r.steps},
+          {"threads", r.threads},
+          {"wall_s", r.wall_s},
+          {"particle_steps_per_s", r.rate()},
+          {"stage_seconds",
+           {{"neighbours", r.stages.neighbours}, {"integrate", r.stages.integrate}, {"forces", r.stages.forces},
+            {"plates", r.stages.plates}, {"breaks", r.stages.breaks}}},
+          {"neighbour_rebuilds", r.rebuilds},
+          {"bytes_per_particle", double(r.memory_bytes) / double(r.particles)},
+          {"state_hash", fmt::format("{:016x}", r.hash)}};
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, int&) {
+  auto options = std::make_shared<BenchOptions>();
+  auto* bench = app.add_subcommand("bench", "time whole DEM steps: particle-steps per second per thread count");
+  bench->add_option("--sample", options->sample, "preset name (tissue, tissue-small) or sample file")->capture_default_str();
+  bench->add_option("--threads", options->threads, "thread counts to time (repeatable)")->capture_default_str();
+  bench->add_option("--broken", options->broken, "fractions of bonds broken beforehand (repeatable)")->capture_default_str();
+  bench->add_option("--steps", options->steps, "timed steps per case")->check(CLI::PositiveNumber)->capture_default_str();
+  bench->add_option("--seed", options->seed, "preset seed and broken-bond selection")->capture_default_str();
+  bench->add_flag("--json", options->json, "print JSON instead of a table");
+  bench->callback([options] {
+    for (int t : options->threads)
+      if (t < 1) throw InputError("--threads", fmt::format("{} is not a thread count", t), "use 1 or more");
+    for (double f : options->broken)
+      if (!(f >= 0.0 && f < 1.0)) throw InputError("--broken", fmt::format("{} is not a fraction in [0, 1)", f), "use e.g. 0.5");
+    const Sample sample = bench_sample(*options);
+    nlohmann::json results = nlohmann::json::array();
+    if (!options->json)
+      fmt::print("rupture {} bench: sample {} ({} particles, {} bonds), {} steps per case\n"
+                 "{:>8} {:>7} {:>9} {:>12} {:>10} {:>7} {:>7} {:>7} {:>8} {:>16}\n",
+                 version_string, options->sample, sample.size(), sample.bonds.size(), options->steps, "broken", "threads",
+                 "wall[s]", "p-steps/s", "ns/p-step", "forces", "integr", "neighb", "rebuilds", "state hash");
+    for (double fraction : options->broken)
+      for (int threads : options->threads) {
+        const BenchResult r = bench_case(sample, *options, threads, fraction);
+        results.push_back(to_json(r, options->sample));
+        if (!options->json)
+          fmt::print("{:>8} {:>7} {:>9.3f} {:>12.4g} {:>10.2f} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} {:>16x}\n", r.broken,
+                     threads, r.wall_s, r.rate(), 1e9 / r.rate(), 100 * r.stages.forces / r.wall_s,
+                     100 * r.stages.integrate / r.wall_s, 100 * r.stages.neighbours / r.wall_s, r.rebuilds, r.hash);
+      }
+    if (options->json)
+      fmt::print("{}\n", nlohmann::json{{"tool", "rupture bench"}, {"version", version_string}, {"results", results}}.dump(2));
+    else
+      fmt::print("bytes per particle (engine arrays, bonds included): {:.0f}\n",
+                 results.back()["bytes_per_particle"].get<double>());
+  });
+}
+
 }  // namespace rupture::cli

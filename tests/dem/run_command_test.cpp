@@ -1,0 +1,141 @@
+// `rupture run` and `rupture check` end to end: configs rejected with clear messages, an unstable
+// run stopped with a diagnosis, identical bytes for any thread count, runs to separation.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/csv.hpp"
+#include "sample/formats.hpp"
+#include "sample/lattice.hpp"
+#include "support/tool.hpp"
+
+namespace rupture {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::run_rupture;
+using testing::slurp;
+using testing::TempDir;
+
+const std::string examples = std::string(RUPTURE_TEST_DATA_DIR) + "/../../examples/";
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+std::filesystem::path write_config(const TempDir& dir, const std::string& text) {
+  const auto path = dir / "config.toml";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(text.c_str(), f);
+  std::fclose(f);
+  return path;
+}
+
+TEST(RunCommand, HelpConfigShowsEveryKeyWithUnitAndDefault) {
+  const auto r = run_rupture("run --help-config");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* text : {"[bonds]", "stiffness = 1000", "[N/mm]", "break_distance = 0.05", "[mm]", "dt = \"auto\"",
+                           "[mm/s]", "snapshot_interval", "threads"})
+    EXPECT_THAT(r.out, HasSubstr(text));
+}
+
+TEST(RunCommand, UnknownKeyIsRejectedListingValidKeys) {
+  TempDir dir;
+  const auto config = write_config(dir, "[sample]\nlattice = \"chain\"\n[bonds]\nstifness = 1e3\n");
+  const auto r = run_rupture("check " + quoted(config));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("bonds.stifness: unknown key"));
+  EXPECT_THAT(r.err, HasSubstr("bonds.stiffness"));
+}
+
+TEST(RunCommand, MissingSampleIsRejected) {
+  TempDir dir;
+  const auto config = write_config(dir, "[bonds]\nstiffness = 1e3\n");
+  const auto r = run_rupture("run " + quoted(config));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("no sample given"));
+}
+
+TEST(RunCommand, NonPositiveStiffnessIsRejected) {
+  const auto r = run_rupture("check '" + examples + "block.toml' --set bonds.stiffness=0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("bonds.stiffness: k_n = 0 must be > 0"));
+}
+
+TEST(RunCommand, DtAboveStabilityLimitIsRejectedWithTheLimit) {
+  const auto r = run_rupture("check '" + examples + "block.toml' --set time.dt=1e-5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("exceeds the stability limit"));
+  EXPECT_THAT(r.err, HasSubstr("dt = \"auto\""));
+}
+
+TEST(RunCommand, CheckPrintsDtSpeedRatioAndEstimates) {
+  const auto r = run_rupture("check '" + examples + "block.toml'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* text : {"critical dt", "plate speed / wave speed", "estimate:", "bytes per particle", "\"stiffness\": 1000.0"})
+    EXPECT_THAT(r.out, HasSubstr(text));
+}
+
+TEST(RunCommand, UnstableRunStopsWithDiagnosisAndKeepsOutputs) {
+  TempDir dir;
+  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") +
+                             " --set time.dt=2e-6 --set time.allow_unstable_dt=true");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("unstable at step"));
+  EXPECT_THAT(r.err, HasSubstr("try time.dt ="));
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
+  EXPECT_EQ(report["status"], "failed");
+  EXPECT_EQ(report["stop_reason"], "unstable");
+  EXPECT_GE(io::read_csv(dir / "out" / "curves.csv").rows(), 1u);
+}
+
+// The regular block runs to separation in well under a second (also under the sanitizers).
+TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
+  TempDir dir;
+  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
+  EXPECT_EQ(report["stop_reason"], "separated");
+  EXPECT_LT(report["energy_balance"]["max_error_relative_to_work"].get<double>(), 1e-2);
+  const auto curves = io::read_csv(dir / "out" / "curves.csv");
+  EXPECT_EQ(curves.header.size(), 15u);
+  EXPECT_TRUE(curves.find("force_top").has_value() && curves.find("elastic_energy").has_value());
+  const auto breaks = io::read_csv(dir / "out" / "breaks.csv");
+  EXPECT_GE(breaks.rows(), 8u) << "at least one bond per column";
+}
+
+TEST(RunCommand, SnapshotsAreWrittenForParaView) {
+  TempDir dir;
+  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") + " --set output.snapshot_interval=500");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string pvd = slurp(dir / "out" / "snapshots.pvd");
+  EXPECT_THAT(pvd, HasSubstr("snapshots/step_0000000000.vtp"));
+  EXPECT_THAT(pvd, HasSubstr("snapshots/step_0000000500.vtp"));
+  const std::string vtp = slurp(dir / "out" / "snapshots" / "step_0000000500.vtp");
+  EXPECT_THAT(vtp, HasSubstr("extension_mm"));
+  EXPECT_THAT(vtp, HasSubstr("relative_extension"));
+}
+
+// A sample file is found relative to the config's folder and gives the same run as the lattice.
+TEST(RunCommand, SampleFileIsReadRelativeToTheConfig) {
+  TempDir dir;
+  save_sample(make_cubic_block(4, 8, 2, 0.5), dir / "block.sample");
+  std::string text = slurp(examples + "block.toml");
+  const auto at = text.find("lattice = \"block\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("lattice = \"block\"").size(), "file = \"block.sample\"");
+  const auto config = write_config(dir, text);
+  const auto from_file = run_rupture("run " + quoted(config) + " -o " + quoted(dir / "file") + " --set stop.max_steps=300");
+  ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
+  const auto from_lattice = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "lattice") + " --set stop.max_steps=300");
+  ASSERT_EQ(from_lattice.exit_code, 0) << from_lattice.err;
+  EXPECT_EQ(io::read_csv(dir / "file" / "curves.csv").columns, io::read_csv(dir / "lattice" / "curves.csv").columns);
+  const auto missing = run_rupture("check " + quoted(config) + " --set sample.file=nothing.sample");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("no such file"));
+}
+
+}  // namespace
+}  // namespace rupture

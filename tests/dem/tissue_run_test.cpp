@@ -1,0 +1,127 @@
+// The reduced tissue preset end to end (too slow for the sanitizer build; block.toml covers the
+// same paths there): bit-identical outputs for any thread count, a run to separation with a force
+// peak, and the engine's state hash for 1, 2 and 3 threads.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include "dem/system.hpp"
+#include "io/csv.hpp"
+#include "loading/ramp.hpp"
+#include "sample/presets.hpp"
+#include "support/tool.hpp"
+
+namespace rupture {
+namespace {
+
+using testing::run_rupture;
+using testing::slurp;
+using testing::TempDir;
+
+const std::string examples = std::string(RUPTURE_TEST_DATA_DIR) + "/../../examples/";
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+struct RunFiles {
+  std::string curves, breaks;
+};
+
+// The '#' lines record the command (thread count, folder); the data must match byte for byte.
+std::string without_comments(const std::string& text) {
+  std::string kept;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (text[start] != '#') kept.append(text, start, end + 1 - start);
+    start = end + 1;
+  }
+  return kept;
+}
+
+RunFiles run_tissue(const TempDir& dir, const std::string& name, int threads, const std::string& extra) {
+  const auto out = dir / name;
+  const auto r = run_rupture("run '" + examples + "tissue-small.toml' -o " + quoted(out) +
+                             " --set run.threads=" + std::to_string(threads) + " " + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return {without_comments(slurp(out / "curves.csv")), without_comments(slurp(out / "breaks.csv"))};
+}
+
+TEST(RunCommand, OutputsAreIdenticalForOneAndTwoThreadsAndRunToRun) {
+  TempDir dir;
+  const std::string short_run = "--set stop.max_steps=3000 --set loading.speed=20000";
+  const RunFiles one = run_tissue(dir, "one", 1, short_run);
+  const RunFiles two = run_tissue(dir, "two", 2, short_run);
+  const RunFiles again = run_tissue(dir, "again", 2, short_run);
+  EXPECT_GT(std::count(one.breaks.begin(), one.breaks.end(), '\n'), 10) << "bonds must break in this run";
+  EXPECT_EQ(one.curves, two.curves);
+  EXPECT_EQ(one.breaks, two.breaks);
+  EXPECT_EQ(two.curves, again.curves);
+  EXPECT_EQ(two.breaks, again.breaks);
+}
+
+// The reduced tissue fails: the force peaks and falls, bonds break, the ledger balances. (With
+// central forces only, floppy ligaments of intact bonds may still join the halves at the strain
+// limit, so the run may end on stop.max_strain rather than on separation.)
+TEST(RunCommand, ReducedTissueFailsWithAForcePeak) {
+  TempDir dir;
+  const auto out = dir / "out";
+  const auto r = run_rupture("run '" + examples + "tissue-small.toml' -o " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(slurp(out / "run.json"));
+  EXPECT_TRUE(report["stop_reason"] == "separated" || report["stop_reason"] == "max_strain") << report["stop_reason"];
+  EXPECT_LT(report["energy_balance"]["max_error_relative_to_work"].get<double>(), 1e-2);
+  const auto curves = io::read_csv(out / "curves.csv");
+  const auto& force = curves.column("force_top");
+  const auto peak = std::max_element(force.begin(), force.end());
+  EXPECT_GT(*peak, 0.0);
+  EXPECT_LT(force.back(), 0.2 * *peak) << "the force falls after the peak: the sample came apart";
+  EXPECT_GT(peak - force.begin(), 2) << "the peak is not at the start";
+  EXPECT_GT(curves.column("broken_bonds").back(), 100.0);
+  EXPECT_GT(io::read_csv(out / "breaks.csv").rows(), 100u);
+}
+
+// Same state, bit for bit, for 1, 2 and 3 threads: the tissue preset is large enough to run the
+// parallel loops.
+TEST(BenchCommand, JsonReportsThroughputAndEqualHashesPerThreadCount) {
+  const auto r = run_rupture("bench --sample tissue-small --steps 30 --threads 1 --threads 2 --broken 0 --broken 0.5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(r.out);
+  const auto& results = report["results"];
+  ASSERT_EQ(results.size(), 4u);
+  for (const auto& result : results)
+    for (const char* key : {"particles", "bonds", "steps", "threads", "wall_s", "particle_steps_per_s", "state_hash"})
+      EXPECT_TRUE(result.contains(key)) << key;
+  EXPECT_EQ(results[0]["state_hash"], results[1]["state_hash"]) << "intact, 1 vs 2 threads";
+  EXPECT_EQ(results[2]["state_hash"], results[3]["state_hash"]) << "half broken, 1 vs 2 threads";
+  EXPECT_NEAR(results[2]["broken_bonds"].get<double>() / results[2]["bonds"].get<double>(), 0.5, 0.03);
+}
+
+TEST(Determinism, StateHashIsIndependentOfThreadCount) {
+  const Sample tissue = make_preset("tissue-small", 7);
+  dem::Params p;
+  p.break_distance = 4e-3;
+  std::vector<std::uint64_t> hashes;
+  std::vector<std::size_t> broken;
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    dem::System system(tissue, p);
+    const double dt = 0.4 * system.critical_dt();
+    const loading::SpeedRamp ramp{20000.0, 50 * dt};
+    for (int s = 1; s <= 400; ++s) system.step(dt, ramp.at(s * dt));
+    hashes.push_back(system.state_hash());
+    broken.push_back(system.bond_count() - system.intact_bonds());
+  }
+  omp_set_num_threads(2);
+  EXPECT_GT(broken[0], 0u) << "some bonds must break so that the break path is covered";
+  EXPECT_EQ(hashes[0], hashes[1]);
+  EXPECT_EQ(hashes[0], hashes[2]);
+  EXPECT_EQ(broken[0], broken[1]);
+}
+
+}  // namespace
+}  // namespace rupture
