@@ -72,8 +72,8 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
   auto* r_sigma = generate->add_option("--r-sigma", gen->params.r_sigma, "Standard deviation of ln r (1)");
   auto* tolerance = generate->add_option("--bond-tolerance", gen->params.bond_tolerance,
                                          "Bond pairs whose surface gap is below this times their mean radius (1)");
-  auto* fill = generate->add_option("--fill-budget", gen->params.max_fill_failures,
-                                    "Gap filling stops after this many failed positions in a row");
+  auto* fill = generate->add_option("--fill-rate", gen->params.min_fill_rate,
+                                    "Gap filling stops once fewer than this fraction of random positions admit a sphere (1)");
   auto* density = generate->add_option("--density", gen->params.density, "Particle density (g/mm^3)");
   generate->add_flag("--json", gen->json, "Print the statistics as JSON");
   generate->callback([gen, width, height, depth, r_min, r_max, r_median, r_sigma, tolerance, fill, density] {
@@ -90,7 +90,7 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
     take(r_median, params.r_median, gen->params.r_median);
     take(r_sigma, params.r_sigma, gen->params.r_sigma);
     take(tolerance, params.bond_tolerance, gen->params.bond_tolerance);
-    take(fill, params.max_fill_failures, gen->params.max_fill_failures);
+    take(fill, params.min_fill_rate, gen->params.min_fill_rate);
     take(density, params.density, gen->params.density);
     const SampleFormat format = gen->format.empty() ? sample_format_for_path(gen->out) : sample_format_from_name(gen->format);
 
@@ -109,7 +109,7 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
                        {"box", {params.size.x, params.size.y, params.size.z}},
                        {"r_min", params.r_min}, {"r_max", params.r_max}, {"r_median", params.r_median},
                        {"r_sigma", params.r_sigma}, {"bond_tolerance", params.bond_tolerance},
-                       {"fill_budget", params.max_fill_failures}, {"density", params.density},
+                       {"fill_rate", params.min_fill_rate}, {"density", params.density},
                        {"units", {{"box", "mm"}, {"radii", "mm"}, {"density", "g/mm^3"}}}};
       doc["sample"] = to_json(stats);
       doc["generation"] = {{"drawn_placed", report.drawn_placed}, {"gap_filled", report.gap_filled},

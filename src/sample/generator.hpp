@@ -35,12 +35,15 @@ struct PackingParams {
   // Bond pairs whose surface gap is below bond_tolerance * (r_i + r_j) / 2 (1, relative to the mean
   // radius of the pair).
   double bond_tolerance = 0.7;
-  // Phase 1 (drawn radii) ends after this many consecutive draws that found no place.
-  std::uint32_t max_discarded_draws = 60;
-  // Random positions tried for one drawn radius before it is discarded.
-  std::uint32_t attempts_per_draw = 200;
-  // Phase 2 (gap filling) ends after this many consecutive random positions where no sphere fitted.
-  std::uint32_t max_fill_failures = 60;
+  // Stopping rules are rates, so that a larger box packs to the same density: phase 1 (drawn radii)
+  // ends with the first block of `draw_block` draws in which fewer than min_drawn_rate of them found a
+  // place; phase 2 (gap filling) ends with the first block of `fill_block` random positions in which
+  // fewer than min_fill_rate of them admitted a sphere.
+  std::uint32_t attempts_per_draw = 200;  // random positions tried for one drawn radius
+  std::uint32_t draw_block = 100;
+  double min_drawn_rate = 0.05;  // 1
+  std::uint32_t fill_block = 2000;
+  double min_fill_rate = 0.08;   // 1
   double density = 2.5e-4;  // g/mm^3, stored in the sample
 };
 
