@@ -33,7 +33,8 @@ void make_bonds(benchmark::State& state) {
 BENCHMARK(make_bonds)->Unit(benchmark::kMillisecond);
 
 void own_format_write_and_read(benchmark::State& state) {
-  for (auto _ : state) benchmark::DoNotOptimize(rupture::parse_own(rupture::format_own(tissue_small()), "bench"));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(rupture::parse_own(rupture::format_own(tissue_small()), "bench"));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(tissue_small().size()));
 }
 BENCHMARK(own_format_write_and_read)->Unit(benchmark::kMillisecond);

@@ -1,8 +1,8 @@
 #include "io/vtk.hpp"
 
-#include <stdexcept>
-
 #include <fmt/format.h>
+
+#include <stdexcept>
 
 #include "io/atomic_file.hpp"
 
@@ -14,11 +14,20 @@ std::string xml_escape(std::string_view text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -30,8 +39,8 @@ std::size_t array_size(const VtkArray& a) {
 
 void append_array(fmt::memory_buffer& out, const VtkArray& a, std::size_t tuples, const char* where) {
   if (a.components < 1 || array_size(a) != tuples * static_cast<std::size_t>(a.components))
-    throw std::invalid_argument(fmt::format("VTK {} array '{}' holds {} values, expected {} x {}", where, a.name,
-                                            array_size(a), tuples, a.components));
+    throw std::invalid_argument(fmt::format("VTK {} array '{}' holds {} values, expected {} x {}", where,
+                                            a.name, array_size(a), tuples, a.components));
   const bool is_float = std::holds_alternative<std::vector<double>>(a.values);
   fmt::format_to(std::back_inserter(out),
                  "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
@@ -56,12 +65,16 @@ std::string format_vtp(const VtkPolyData& data) {
     for (std::size_t p; (p = safe.find("--")) != std::string::npos;) safe.replace(p, 2, "- -");
     fmt::format_to(it, "<!-- {} -->\n", safe);
   }
-  fmt::format_to(it, "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
-  fmt::format_to(it, "  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
-                     "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
+  fmt::format_to(
+      it, "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n");
+  fmt::format_to(it,
+                 "  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" "
+                 "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
                  data.points.size(), data.lines.size());
-  fmt::format_to(it, "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-                     "format=\"ascii\">\n");
+  fmt::format_to(
+      it,
+      "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">\n");
   for (const Vec3& p : data.points) fmt::format_to(it, "{} {} {}\n", p.x, p.y, p.z);
   fmt::format_to(it, "        </DataArray>\n      </Points>\n");
   fmt::format_to(it, "      <PointData>\n");
@@ -70,11 +83,12 @@ std::string format_vtp(const VtkPolyData& data) {
   fmt::format_to(it, "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
   for (const auto& line : data.lines) {
     if (line[0] >= data.points.size() || line[1] >= data.points.size())
-      throw std::invalid_argument(fmt::format("VTK line ({}, {}) refers past the {} points", line[0], line[1],
-                                              data.points.size()));
+      throw std::invalid_argument(
+          fmt::format("VTK line ({}, {}) refers past the {} points", line[0], line[1], data.points.size()));
     fmt::format_to(it, "{} {}\n", line[0], line[1]);
   }
-  fmt::format_to(it, "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+  fmt::format_to(
+      it, "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
   for (std::size_t k = 0; k < data.lines.size(); ++k)
     fmt::format_to(it, "{}{}", 2 * (k + 1), (k + 1) % 16 == 0 ? '\n' : ' ');
   fmt::format_to(it, "\n        </DataArray>\n      </Lines>\n      <CellData>\n");
@@ -90,8 +104,9 @@ void write_vtp(const std::filesystem::path& path, const VtkPolyData& data) {
 std::string format_pvd(const std::vector<PvdEntry>& entries) {
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
-  fmt::format_to(it, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" "
-                     "byte_order=\"LittleEndian\">\n  <Collection>\n");
+  fmt::format_to(it,
+                 "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" "
+                 "byte_order=\"LittleEndian\">\n  <Collection>\n");
   for (const auto& e : entries)
     fmt::format_to(it, "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.time,
                    xml_escape(e.file.generic_string()));

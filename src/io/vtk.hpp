@@ -34,8 +34,8 @@ std::string format_vtp(const VtkPolyData& data);
 void write_vtp(const std::filesystem::path& path, const VtkPolyData& data);
 
 struct PvdEntry {
-  double time = 0.0;             // s
-  std::filesystem::path file;    // written as given (relative to the .pvd is what ParaView expects)
+  double time = 0.0;           // s
+  std::filesystem::path file;  // written as given (relative to the .pvd is what ParaView expects)
 };
 std::string format_pvd(const std::vector<PvdEntry>& entries);
 void write_pvd(const std::filesystem::path& path, const std::vector<PvdEntry>& entries);

@@ -1,8 +1,8 @@
 // LAMMPS data files and ESyS-Particle LSMGeometry files (declared in sample/formats.hpp).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
-
-#include <fmt/format.h>
 
 #include "core/units.hpp"
 #include "rupture/version.hpp"
@@ -30,13 +30,16 @@ struct AtomLayout {
 };
 
 AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>& style) {
-  const std::string supported = "supported: 'hybrid sphere bond', 'hybrid bond sphere', 'bpm/sphere', 'sphere'";
+  const std::string supported =
+      "supported: 'hybrid sphere bond', 'hybrid bond sphere', 'bpm/sphere', 'sphere'";
   if (style.empty())
-    in.fail("the Atoms section does not name its atom style", "write it as a comment: 'Atoms # hybrid sphere bond'");
+    in.fail("the Atoms section does not name its atom style",
+            "write it as a comment: 'Atoms # hybrid sphere bond'");
   AtomLayout layout;
   if (style[0] == "bpm/sphere") return {0, 2, 5, 3, 4, 8};
   if (style[0] == "sphere") return {0, 1, 4, 2, 3, 7};
-  if (style[0] != "hybrid") in.fail(fmt::format("atom style '{}' has no particle radius", style[0]), supported);
+  if (style[0] != "hybrid")
+    in.fail(fmt::format("atom style '{}' has no particle radius", style[0]), supported);
   int column = 5;  // id type x y z, then each sub-style's own columns in order
   for (std::size_t k = 1; k < style.size(); ++k) {
     const auto sub = style[k];
@@ -66,19 +69,23 @@ AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>
 std::string format_lammps_data(const Sample& sample, LammpsAtomStyle style) {
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
-  fmt::format_to(it, "{} written by rupture {}; lengths mm, density g/mm^3, atom-ID = rupture id + 1, atom types 1 "
-                     "free 2 bottom 3 top\n\n",
-                 lammps_title, version_string);
-  fmt::format_to(it, "{} atoms\n3 atom types\n{} bonds\n1 bond types\n\n", sample.size(), sample.bonds.size());
+  fmt::format_to(
+      it,
+      "{} written by rupture {}; lengths mm, density g/mm^3, atom-ID = rupture id + 1, atom types 1 "
+      "free 2 bottom 3 top\n\n",
+      lammps_title, version_string);
+  fmt::format_to(it, "{} atoms\n3 atom types\n{} bonds\n1 bond types\n\n", sample.size(),
+                 sample.bonds.size());
   const Box& b = sample.box;
-  fmt::format_to(it, "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n", b.lower.x, b.upper.x, b.lower.y, b.upper.y,
-                 b.lower.z, b.upper.z);
+  fmt::format_to(it, "{} {} xlo xhi\n{} {} ylo yhi\n{} {} zlo zhi\n\n", b.lower.x, b.upper.x, b.lower.y,
+                 b.upper.y, b.lower.z, b.upper.z);
   const bool bpm = style == LammpsAtomStyle::bpm_sphere;
   fmt::format_to(it, "Atoms # {}\n\n", bpm ? "bpm/sphere" : "hybrid sphere bond");
   for (const auto k : sample_detail::id_order(sample)) {
     const std::int64_t atom_id = sample.id[k] + 1;
     if (atom_id < 1)
-      throw InputError("LAMMPS export", fmt::format("particle id {} would give LAMMPS atom-ID {} < 1", sample.id[k], atom_id),
+      throw InputError("LAMMPS export",
+                       fmt::format("particle id {} would give LAMMPS atom-ID {} < 1", sample.id[k], atom_id),
                        "renumber the sample's ids from 0 (e.g. through the own format) first");
     const int type = 1 + static_cast<int>(sample.group[k]);
     const Vec3& p = sample.position[k];
@@ -121,7 +128,8 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
       have_atoms = true;
     } else if (words.size() == 2 && words[1] == "bonds") {
       bonds = in.count(words[0], "bond count");
-    } else if (words.size() == 4 && words[2].size() == 3 && words[2].substr(1) == "lo" && words[3].substr(1) == "hi") {
+    } else if (words.size() == 4 && words[2].size() == 3 && words[2].substr(1) == "lo" &&
+               words[3].substr(1) == "hi") {
       const int axis = words[2][0] - 'x';
       if (axis < 0 || axis > 2) in.fail(fmt::format("unknown bounds keyword '{}'", words[2]));
       const double lo = in.real(words[0], "lower bound"), hi = in.real(words[1], "upper bound");
@@ -165,18 +173,21 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
       const AtomLayout layout = atom_layout(in, TextReader::split(style_text));
       section = for_each_data_line([&](const std::vector<std::string_view>& words) {
         if (words.size() != layout.columns && words.size() != layout.columns + 3)
-          in.fail(fmt::format("{} columns where atom style '{}' has {} (or {} with image flags)", words.size(),
-                              TextReader::trim(style_text), layout.columns, layout.columns + 3));
+          in.fail(fmt::format("{} columns where atom style '{}' has {} (or {} with image flags)",
+                              words.size(), TextReader::trim(style_text), layout.columns,
+                              layout.columns + 3));
         const auto column = [&](int k) { return words[static_cast<std::size_t>(k)]; };
         const auto atom_id = in.integer(column(layout.id), "atom-ID");
         const double diameter = in.real(column(layout.diameter), "diameter");
         if (!(diameter > 0.0))
-          in.fail(fmt::format("atom {} has diameter {}", atom_id, diameter), "give every atom a diameter > 0");
+          in.fail(fmt::format("atom {} has diameter {}", atom_id, diameter),
+                  "give every atom a diameter > 0");
         const double density = in.real(column(layout.density), "density");
         const auto type = in.integer(column(layout.type), "atom-type");
         ParticleGroup group = ParticleGroup::free;
         if (written_by_rupture) {
-          if (type < 1 || type > 3) in.fail(fmt::format("atom type {} is not 1, 2 or 3 (free, bottom, top)", type));
+          if (type < 1 || type > 3)
+            in.fail(fmt::format("atom type {} is not 1, 2 or 3 (free, bottom, top)", type));
           group = static_cast<ParticleGroup>(type - 1);
         }
         const double radius = 0.5 * diameter;
@@ -222,7 +233,8 @@ std::string format_lsm_geometry(const Sample& sample) {
   fmt::memory_buffer out;
   auto it = std::back_inserter(out);
   const Box& b = sample.box;
-  fmt::format_to(it, "LSMGeometry 1.2\nBoundingBox {} {} {} {} {} {}\nPeriodicBoundaries 0 0 0\nDimension 3D\n",
+  fmt::format_to(it,
+                 "LSMGeometry 1.2\nBoundingBox {} {} {} {} {} {}\nPeriodicBoundaries 0 0 0\nDimension 3D\n",
                  b.lower.x, b.lower.y, b.lower.z, b.upper.x, b.upper.y, b.upper.z);
   fmt::format_to(it, "BeginParticles\nSimple\n{}\n", sample.size());
   for (const auto k : sample_detail::id_order(sample)) {
@@ -245,7 +257,8 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   auto words = TextReader::split(in.require("'LSMGeometry 1.2'"));
   if (words.size() != 2 || words[0] != "LSMGeometry") in.fail("not an LSMGeometry file");
   if (words[1] != "1.2" && words[1] != "1.1")
-    in.fail(fmt::format("LSMGeometry version {} is not supported", words[1]), "write the file as version 1.2");
+    in.fail(fmt::format("LSMGeometry version {} is not supported", words[1]),
+            "write the file as version 1.2");
   SampleAssembler build;
   std::string_view line;
   for (;;) {
@@ -259,9 +272,11 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
       box.upper = {in.real(words[4], "xmax"), in.real(words[5], "ymax"), in.real(words[6], "zmax")};
     } else if (words[0] == "PeriodicBoundaries") {
       for (std::size_t k = 1; k < words.size(); ++k)
-        if (words[k] != "0") in.fail("periodic boundaries are not supported", "generate the geometry without periodicity");
+        if (words[k] != "0")
+          in.fail("periodic boundaries are not supported", "generate the geometry without periodicity");
     } else if (words[0] == "Dimension" || words[0] == "Dimensions") {
-      if (words.size() < 2 || words[1] != "3D") in.fail("only 3D geometries can be samples", "generate a 3D geometry");
+      if (words.size() < 2 || words[1] != "3D")
+        in.fail("only 3D geometries can be samples", "generate a 3D geometry");
     } else {
       in.fail(fmt::format("unknown header line '{}'", line));
     }
@@ -270,9 +285,11 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   const auto particles = in.count(in.require("the particle count"), "particle count");
   for (std::size_t k = 0; k < particles; ++k) {
     words = TextReader::split(in.require(fmt::format("particle {} of {}", k + 1, particles)));
-    if (words.size() != 6) in.fail(fmt::format("{} columns where 6 were expected (x y z r id tag)", words.size()));
+    if (words.size() != 6)
+      in.fail(fmt::format("{} columns where 6 were expected (x y z r id tag)", words.size()));
     build.add_particle(in, in.integer(words[4], "id"),
-                       {in.real(words[0], "x"), in.real(words[1], "y"), in.real(words[2], "z")}, in.radius(words[3]));
+                       {in.real(words[0], "x"), in.real(words[1], "y"), in.real(words[2], "z")},
+                       in.radius(words[3]));
   }
   keyword("EndParticles");
   if (in.next(line)) {
@@ -280,7 +297,8 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
     const auto bonds = in.count(in.require("the connection count"), "connection count");
     for (std::size_t k = 0; k < bonds; ++k) {
       words = TextReader::split(in.require(fmt::format("connection {} of {}", k + 1, bonds)));
-      if (words.size() != 3) in.fail(fmt::format("{} columns where 3 were expected (id1 id2 tag)", words.size()));
+      if (words.size() != 3)
+        in.fail(fmt::format("{} columns where 3 were expected (id1 id2 tag)", words.size()));
       build.add_bond(in, in.integer(words[0], "id1"), in.integer(words[1], "id2"));
     }
     keyword("EndConnect");

@@ -1,9 +1,9 @@
 #include "sample/formats.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -24,7 +24,8 @@ constexpr int own_format_version = 1;
 
 std::string lower_extension(const fs::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 }  // namespace
@@ -32,10 +33,13 @@ std::string lower_extension(const fs::path& path) {
 SampleFormat sample_format_from_name(std::string_view name) {
   for (std::size_t k = 0; k < format_names.size(); ++k)
     if (name == format_names[k]) return static_cast<SampleFormat>(k);
-  throw InputError("--format", fmt::format("unknown sample format '{}'", name), "use one of: own, lammps, lsm, vtp");
+  throw InputError("--format", fmt::format("unknown sample format '{}'", name),
+                   "use one of: own, lammps, lsm, vtp");
 }
 
-std::string_view sample_format_name(SampleFormat format) { return format_names[static_cast<std::size_t>(format)]; }
+std::string_view sample_format_name(SampleFormat format) {
+  return format_names[static_cast<std::size_t>(format)];
+}
 
 SampleFormat sample_format_for_path(const fs::path& path) {
   const auto ext = lower_extension(path);
@@ -55,10 +59,12 @@ std::string format_own(const Sample& sample) {
   auto it = std::back_inserter(out);
   fmt::format_to(it, "rupture-sample {}\n", own_format_version);
   for (const auto& line : sample.provenance) fmt::format_to(it, "# {}\n", line);
-  fmt::format_to(it, "# units: lengths mm, density g/mm^3; groups: free, bottom (glued to the fixed plate), top "
-                     "(glued to the moving plate)\n");
+  fmt::format_to(it,
+                 "# units: lengths mm, density g/mm^3; groups: free, bottom (glued to the fixed plate), top "
+                 "(glued to the moving plate)\n");
   const Box& b = sample.box;
-  fmt::format_to(it, "box {} {} {} {} {} {}\n", b.lower.x, b.lower.y, b.lower.z, b.upper.x, b.upper.y, b.upper.z);
+  fmt::format_to(it, "box {} {} {} {} {} {}\n", b.lower.x, b.lower.y, b.lower.z, b.upper.x, b.upper.y,
+                 b.upper.z);
   fmt::format_to(it, "density {}\n", sample.density);
   fmt::format_to(it, "particles {}\n# id x y z radius group\n", sample.size());
   for (const auto k : sample_detail::id_order(sample)) {
@@ -115,10 +121,11 @@ Sample parse_own(std::string_view text, const std::string& source) {
     in.expect_columns(words, 6, "id x y z radius group");
     if (words.size() > 6) in.fail("more than 6 columns (id x y z radius group)");
     const auto group = std::find(group_names.begin(), group_names.end(), words[5]);
-    if (group == group_names.end()) in.fail(fmt::format("unknown group '{}'", words[5]), "use free, bottom or top");
+    if (group == group_names.end())
+      in.fail(fmt::format("unknown group '{}'", words[5]), "use free, bottom or top");
     build.add_particle(in, in.integer(words[0], "id"),
-                       {in.real(words[1], "x"), in.real(words[2], "y"), in.real(words[3], "z")}, in.radius(words[4]),
-                       static_cast<ParticleGroup>(group - group_names.begin()));
+                       {in.real(words[1], "x"), in.real(words[2], "y"), in.real(words[3], "z")},
+                       in.radius(words[4]), static_cast<ParticleGroup>(group - group_names.begin()));
   }
   words = next_data("'bonds'");
   if (words.size() != 2 || words[0] != "bonds")
@@ -129,11 +136,13 @@ Sample parse_own(std::string_view text, const std::string& source) {
     words = next_data(fmt::format("bond {} of {}", k + 1, bonds));
     in.expect_columns(words, 3, "id_a id_b rest_length");
     if (words.size() > 3) in.fail("more than 3 columns (id_a id_b rest_length)");
-    build.add_bond(in, in.integer(words[0], "id_a"), in.integer(words[1], "id_b"), in.real(words[2], "rest_length"));
+    build.add_bond(in, in.integer(words[0], "id_a"), in.integer(words[1], "id_b"),
+                   in.real(words[2], "rest_length"));
   }
   words = next_data("'end'");
   if (words.size() != 1 || words[0] != "end")
-    in.fail(fmt::format("expected 'end' after {} bonds", bonds), "the bond count in the header must match the bond lines");
+    in.fail(fmt::format("expected 'end' after {} bonds", bonds),
+            "the bond count in the header must match the bond lines");
   return build.finish();
 }
 
@@ -154,7 +163,8 @@ io::VtkPolyData to_polydata(const Sample& sample) {
     radii.push_back(sample.radius[s]);
     groups.push_back(static_cast<std::int64_t>(sample.group[s]));
   }
-  data.point_data = {{"id", 1, std::move(ids)}, {"radius", 1, std::move(radii)}, {"group", 1, std::move(groups)}};
+  data.point_data = {
+      {"id", 1, std::move(ids)}, {"radius", 1, std::move(radii)}, {"group", 1, std::move(groups)}};
   std::vector<double> rest;
   for (const Bond& b : sample.bonds) {
     data.lines.push_back({rank[b.i], rank[b.j]});
@@ -162,7 +172,9 @@ io::VtkPolyData to_polydata(const Sample& sample) {
   }
   data.line_data = {{"rest_length", 1, std::move(rest)}};
   data.comments = sample.provenance;
-  data.comments.push_back("rupture sample: points = particles (radius mm; group 0 free, 1 bottom, 2 top), lines = bonds (rest_length mm)");
+  data.comments.push_back(
+      "rupture sample: points = particles (radius mm; group 0 free, 1 bottom, 2 top), lines = bonds "
+      "(rest_length mm)");
   return data;
 }
 
@@ -193,14 +205,24 @@ Sample load_sample(const fs::path& path) {
   return sample;
 }
 
-void save_sample(const Sample& sample, const fs::path& path) { save_sample(sample, path, sample_format_for_path(path)); }
+void save_sample(const Sample& sample, const fs::path& path) {
+  save_sample(sample, path, sample_format_for_path(path));
+}
 
 void save_sample(const Sample& sample, const fs::path& path, SampleFormat format) {
   switch (format) {
-    case SampleFormat::own: io::write_file_atomically(path, format_own(sample)); break;
-    case SampleFormat::lammps: io::write_file_atomically(path, format_lammps_data(sample)); break;
-    case SampleFormat::lsm: io::write_file_atomically(path, format_lsm_geometry(sample)); break;
-    case SampleFormat::vtp: io::write_vtp(path, to_polydata(sample)); break;
+    case SampleFormat::own:
+      io::write_file_atomically(path, format_own(sample));
+      break;
+    case SampleFormat::lammps:
+      io::write_file_atomically(path, format_lammps_data(sample));
+      break;
+    case SampleFormat::lsm:
+      io::write_file_atomically(path, format_lsm_geometry(sample));
+      break;
+    case SampleFormat::vtp:
+      io::write_vtp(path, to_polydata(sample));
+      break;
   }
 }
 

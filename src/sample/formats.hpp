@@ -35,7 +35,8 @@ Sample parse_own(std::string_view text, const std::string& source);
 // `hybrid bond sphere` and `sphere` (no bonds). LAMMPS atom-ID = rupture id + 1; atom types
 // 1 free, 2 bottom, 3 top. Rest lengths are not part of the format: read back as initial distances.
 enum class LammpsAtomStyle { hybrid_sphere_bond, bpm_sphere };
-std::string format_lammps_data(const Sample& sample, LammpsAtomStyle style = LammpsAtomStyle::hybrid_sphere_bond);
+std::string format_lammps_data(const Sample& sample,
+                               LammpsAtomStyle style = LammpsAtomStyle::hybrid_sphere_bond);
 Sample parse_lammps_data(std::string_view text, const std::string& source);
 
 // ESyS-Particle geometry (`LSMGeometry 1.2`): particles `x y z r id tag` (tag 0 free, 1 bottom,

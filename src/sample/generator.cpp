@@ -1,21 +1,21 @@
 #include "sample/generator.hpp"
 
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <optional>
 
-#include <Eigen/Dense>
-#include <boost/math/distributions/normal.hpp>
-#include <fmt/format.h>
-
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "core/units.hpp"
-#include "sample/cell_grid.hpp"
 #include "rupture/version.hpp"
+#include "sample/cell_grid.hpp"
 
 namespace rupture {
 
@@ -31,7 +31,8 @@ const boost::math::normal_distribution<double> standard_normal(0.0, 1.0);
 TruncatedLogNormal::TruncatedLogNormal(double r_min, double r_max, double median, double sigma)
     : r_min_(r_min), r_max_(r_max), log_median_(0.0), sigma_(sigma) {
   if (!(r_min > 0.0) || !(r_max > r_min))
-    throw InputError("--r-min/--r-max", fmt::format("radii must satisfy 0 < r_min < r_max (got {} and {} mm)", r_min, r_max),
+    throw InputError("--r-min/--r-max",
+                     fmt::format("radii must satisfy 0 < r_min < r_max (got {} and {} mm)", r_min, r_max),
                      "give r_min below r_max, both positive, in mm");
   if (!(median > 0.0) || !std::isfinite(median))
     throw InputError("--r-median", fmt::format("median radius must be positive (got {} mm)", median));
@@ -42,8 +43,9 @@ TruncatedLogNormal::TruncatedLogNormal(double r_min, double r_max, double median
   cdf_low_ = boost::math::cdf(standard_normal, (std::log(r_min) - log_median_) / sigma_);
   cdf_high_ = boost::math::cdf(standard_normal, (std::log(r_max) - log_median_) / sigma_);
   if (!(cdf_high_ > cdf_low_))
-    throw InputError("--r-median", fmt::format("the log-normal (median {} mm, sigma {}) has no probability in [{}, {}] mm",
-                                               median, sigma, r_min, r_max),
+    throw InputError("--r-median",
+                     fmt::format("the log-normal (median {} mm, sigma {}) has no probability in [{}, {}] mm",
+                                 median, sigma, r_min, r_max),
                      "move the median into the radius range or widen sigma");
 }
 
@@ -71,13 +73,15 @@ void validate(const PackingParams& p) {
   TruncatedLogNormal(p.r_min, p.r_max, p.r_median, p.r_sigma);  // validates the radii
   const double smallest_side = std::min({p.size.x, p.size.y, p.size.z});
   if (2.0 * p.r_max > smallest_side)
-    throw InputError("--r-max", fmt::format("largest diameter {} mm does not fit the box's smallest side {} mm",
-                                            2.0 * p.r_max, smallest_side),
+    throw InputError("--r-max",
+                     fmt::format("largest diameter {} mm does not fit the box's smallest side {} mm",
+                                 2.0 * p.r_max, smallest_side),
                      "lower r_max or enlarge the box");
   if (!(p.bond_tolerance >= 0.0) || !std::isfinite(p.bond_tolerance))
     throw InputError("--bond-tolerance", fmt::format("must be >= 0 (got {})", p.bond_tolerance),
                      "give the largest bonded surface gap relative to the pair's mean radius, e.g. 0.1");
-  if (!positive(p.density)) throw InputError("--density", fmt::format("must be positive (got {} g/mm^3)", p.density));
+  if (!positive(p.density))
+    throw InputError("--density", fmt::format("must be positive (got {} g/mm^3)", p.density));
   if (p.attempts_per_draw == 0 || p.draw_block == 0 || p.fill_block == 0)
     throw InputError("packing budget", "attempt and block sizes must be at least 1");
   if (!(p.min_drawn_rate >= 0.0 && p.min_drawn_rate <= 1.0))
@@ -213,16 +217,20 @@ class Packer {
         positions_rng_(seed, RandomStream::sample_packing),
         tolerance_(1e-9 * params.r_max) {
     // Faces as inward-facing planes n.x = d.
-    faces_ = {{{true, {1, 0, 0}, box_.lower.x}, {true, {-1, 0, 0}, -box_.upper.x},
-               {true, {0, 1, 0}, box_.lower.y}, {true, {0, -1, 0}, -box_.upper.y},
-               {true, {0, 0, 1}, box_.lower.z}, {true, {0, 0, -1}, -box_.upper.z}}};
+    faces_ = {{{true, {1, 0, 0}, box_.lower.x},
+               {true, {-1, 0, 0}, -box_.upper.x},
+               {true, {0, 1, 0}, box_.lower.y},
+               {true, {0, -1, 0}, -box_.upper.y},
+               {true, {0, 0, 1}, box_.lower.z},
+               {true, {0, 0, -1}, -box_.upper.z}}};
   }
 
   // Tries one random position for a sphere of the given radius (phase 1) or of whatever radius the
   // gap allows (phase 2). Returns whether a sphere was placed.
   bool try_place(std::optional<double> radius) {
     ++positions_tried_;
-    const Vec3 p{positions_rng_.uniform(box_.lower.x, box_.upper.x), positions_rng_.uniform(box_.lower.y, box_.upper.y),
+    const Vec3 p{positions_rng_.uniform(box_.lower.x, box_.upper.x),
+                 positions_rng_.uniform(box_.lower.y, box_.upper.y),
                  positions_rng_.uniform(box_.lower.z, box_.upper.z)};
     const int wanted = radius ? 3 : 4;
     std::array<Obstacle, 4> nearest;
@@ -332,7 +340,7 @@ Sample generate_sample(const PackingParams& params, std::uint64_t seed, Generati
 
   const double box_volume = params.size.x * params.size.y * params.size.z;
   Progress progress("sample: positions tried");  // total unknown: the packing decides when it is full
-  double solid_volume = 0.0;                       // mm^3
+  double solid_volume = 0.0;                     // mm^3
   const auto show = [&](const char* phase) {
     progress.update_with(static_cast<double>(packer.positions_tried()), [&] {
       return fmt::format("{}: {} particles, solid fraction {:.3f}", phase, packer.spheres().size(),
@@ -399,12 +407,14 @@ Sample generate_sample(const PackingParams& params, std::uint64_t seed, Generati
   assign_glued_layers(sample);
   sample.provenance = {
       fmt::format("generated by rupture {}", version_string),
-      fmt::format("generator: insertion packing, seed {}, box {} x {} x {} mm, radii log-normal median {} mm sigma {} "
-                  "truncated to [{}, {}] mm, bond tolerance {}, attempts per draw {}, drawn rate {} per {} draws, "
-                  "fill rate {} per {} positions",
-                  seed, params.size.x, params.size.y, params.size.z, params.r_median, params.r_sigma, params.r_min,
-                  params.r_max, params.bond_tolerance, params.attempts_per_draw, params.min_drawn_rate, params.draw_block,
-                  params.min_fill_rate, params.fill_block)};
+      fmt::format(
+          "generator: insertion packing, seed {}, box {} x {} x {} mm, radii log-normal median {} mm sigma "
+          "{} "
+          "truncated to [{}, {}] mm, bond tolerance {}, attempts per draw {}, drawn rate {} per {} draws, "
+          "fill rate {} per {} positions",
+          seed, params.size.x, params.size.y, params.size.z, params.r_median, params.r_sigma, params.r_min,
+          params.r_max, params.bond_tolerance, params.attempts_per_draw, params.min_drawn_rate,
+          params.draw_block, params.min_fill_rate, params.fill_block)};
   return sample;
 }
 
@@ -431,7 +441,8 @@ void make_bonds(Sample& sample, double tolerance) {
   const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i)
-    for_each_partner(static_cast<std::uint32_t>(i), [&](std::uint32_t, double) { ++start[static_cast<std::size_t>(i) + 1]; });
+    for_each_partner(static_cast<std::uint32_t>(i),
+                     [&](std::uint32_t, double) { ++start[static_cast<std::size_t>(i) + 1]; });
   std::partial_sum(start.begin(), start.end(), start.begin());
   sample.bonds.resize(start[n]);
 #pragma omp parallel for schedule(static)
@@ -440,7 +451,8 @@ void make_bonds(Sample& sample, double tolerance) {
     auto slot = first;
     const auto u = static_cast<std::uint32_t>(i);
     for_each_partner(u, [&](std::uint32_t j, double distance) { sample.bonds[slot++] = {u, j, distance}; });
-    std::sort(sample.bonds.begin() + static_cast<std::ptrdiff_t>(first), sample.bonds.begin() + static_cast<std::ptrdiff_t>(slot),
+    std::sort(sample.bonds.begin() + static_cast<std::ptrdiff_t>(first),
+              sample.bonds.begin() + static_cast<std::ptrdiff_t>(slot),
               [](const Bond& a, const Bond& b) { return a.j < b.j; });
   }
 }
@@ -469,12 +481,14 @@ void sort_spatially(Sample& sample, double cell_size) {
   std::vector<std::uint64_t> key(n);
   for (std::size_t k = 0; k < n; ++k) {
     const auto c = grid.coords(sample.position[k]);
-    key[k] = spread_bits(static_cast<std::uint64_t>(c[0])) | spread_bits(static_cast<std::uint64_t>(c[1])) << 1 |
+    key[k] = spread_bits(static_cast<std::uint64_t>(c[0])) |
+             spread_bits(static_cast<std::uint64_t>(c[1])) << 1 |
              spread_bits(static_cast<std::uint64_t>(c[2])) << 2;
   }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
   std::vector<std::uint32_t> new_index(n);
   for (std::uint32_t k = 0; k < n; ++k) new_index[order[k]] = k;
   const auto permute = [&](auto& values) {

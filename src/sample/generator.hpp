@@ -27,9 +27,9 @@ class TruncatedLogNormal {
 };
 
 struct PackingParams {
-  Vec3 size{80.0, 25.0, 5.0};   // mm: width (x) x height (y, loading) x depth (z); box starts at 0
-  double r_min = 0.2;           // mm: smallest radius
-  double r_max = 0.6;           // mm: largest radius
+  Vec3 size{80.0, 25.0, 5.0};  // mm: width (x) x height (y, loading) x depth (z); box starts at 0
+  double r_min = 0.2;          // mm: smallest radius
+  double r_max = 0.6;          // mm: largest radius
   double r_median = 0.5;       // mm: median of the (untruncated) log-normal
   double r_sigma = 0.3;        // 1: standard deviation of ln r
   // Bond pairs whose surface gap is below bond_tolerance * (r_i + r_j) / 2 (1, relative to the mean
@@ -43,15 +43,15 @@ struct PackingParams {
   std::uint32_t draw_block = 100;
   double min_drawn_rate = 0.05;  // 1
   std::uint32_t fill_block = 2000;
-  double min_fill_rate = 0.08;   // 1
-  double density = 2.5e-4;  // g/mm^3, stored in the sample
+  double min_fill_rate = 0.08;  // 1
+  double density = 2.5e-4;      // g/mm^3, stored in the sample
 };
 
 // What the generator did, for reports and for the tests of its promises.
 struct GenerationReport {
-  std::size_t drawn_placed = 0;   // particles from phase 1 (radius drawn, then placed)
-  std::size_t gap_filled = 0;     // particles from phase 2 (radius set by the gap)
-  std::size_t draws = 0;          // radii drawn in phase 1 (placed + discarded)
+  std::size_t drawn_placed = 0;  // particles from phase 1 (radius drawn, then placed)
+  std::size_t gap_filled = 0;    // particles from phase 2 (radius set by the gap)
+  std::size_t draws = 0;         // radii drawn in phase 1 (placed + discarded)
   // Phase-1 radii up to (not including) the first discarded draw, in draw order: exactly the first
   // draws of the log-normal stream, so they follow the requested distribution without any bias.
   std::vector<double> radii_before_first_discard;

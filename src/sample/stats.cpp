@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 #include "core/units.hpp"
@@ -55,7 +54,8 @@ SampleStats compute_stats(const Sample& sample, std::size_t histogram_bins) {
   for (std::uint32_t i = 0; i < s.particles; ++i)
     grid.for_each_near(sample.position[i], [&](std::uint32_t j) {
       if (j <= i) return;
-      const double overlap = sample.radius[i] + sample.radius[j] - norm(sample.position[j] - sample.position[i]);
+      const double overlap =
+          sample.radius[i] + sample.radius[j] - norm(sample.position[j] - sample.position[i]);
       s.max_overlap = std::max(s.max_overlap, overlap);
     });
   return s;
@@ -74,8 +74,12 @@ nlohmann::json to_json(const SampleStats& s) {
           {"max_overlap", s.max_overlap},
           {"total_mass", s.total_mass},
           {"units",
-           {{"radius", "mm"}, {"box_volume", "mm^3"}, {"max_overlap", "mm"}, {"total_mass", "g"},
-            {"solid_fraction", "1"}, {"mean_coordination", "bonds per particle"}}}};
+           {{"radius", "mm"},
+            {"box_volume", "mm^3"},
+            {"max_overlap", "mm"},
+            {"total_mass", "g"},
+            {"solid_fraction", "1"},
+            {"mean_coordination", "bonds per particle"}}}};
 }
 
 }  // namespace rupture

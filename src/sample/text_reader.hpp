@@ -2,6 +2,8 @@
 // format reports errors the same way ("file:line: problem; fix"). Internal to src/sample.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -10,8 +12,6 @@
 #include <string_view>
 #include <unordered_map>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "sample/sample.hpp"
@@ -106,7 +106,8 @@ class TextReader {
     if (!(r > 0.0)) fail(fmt::format("radius {} mm is not positive", r), "every particle needs a radius > 0");
     return r;
   }
-  void expect_columns(const std::vector<std::string_view>& words, std::size_t at_least, std::string_view layout) const {
+  void expect_columns(const std::vector<std::string_view>& words, std::size_t at_least,
+                      std::string_view layout) const {
     if (words.size() < at_least)
       fail(fmt::format("{} columns where {} were expected ({})", words.size(), at_least, layout));
   }
@@ -141,7 +142,8 @@ class SampleAssembler {
     if (id_a == id_b) in.fail(fmt::format("bond joins particle {} to itself", id_a));
     const auto i = std::min(a->second, b->second), j = std::max(a->second, b->second);
     if (rest_length < 0.0) rest_length = norm(sample.position[j] - sample.position[i]);
-    if (!(rest_length > 0.0)) in.fail(fmt::format("bond {}-{} has rest length {} mm", id_a, id_b, rest_length));
+    if (!(rest_length > 0.0))
+      in.fail(fmt::format("bond {}-{} has rest length {} mm", id_a, id_b, rest_length));
     if (!bond_keys_.emplace((std::uint64_t{i} << 32) | j, 0).second)
       in.fail(fmt::format("bond {}-{} appears twice", id_a, id_b), "list each bonded pair once");
     sample.bonds.push_back({i, j, rest_length});
@@ -177,9 +179,10 @@ inline std::vector<IdBond> bonds_by_id(const Sample& sample) {
   std::vector<IdBond> bonds;
   bonds.reserve(sample.bonds.size());
   for (const Bond& bond : sample.bonds)
-    bonds.push_back({std::min(sample.id[bond.i], sample.id[bond.j]), std::max(sample.id[bond.i], sample.id[bond.j]),
-                     bond.rest_length});
-  std::sort(bonds.begin(), bonds.end(), [](const IdBond& x, const IdBond& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    bonds.push_back({std::min(sample.id[bond.i], sample.id[bond.j]),
+                     std::max(sample.id[bond.i], sample.id[bond.j]), bond.rest_length});
+  std::sort(bonds.begin(), bonds.end(),
+            [](const IdBond& x, const IdBond& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
   return bonds;
 }
 

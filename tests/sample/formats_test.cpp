@@ -1,9 +1,9 @@
 #include "sample/formats.hpp"
 
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "core/error.hpp"
 #include "sample_fixture.hpp"
@@ -14,8 +14,8 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using ::testing::ThrowsMessage;
 using testing::small_tissue;
+using ::testing::ThrowsMessage;
 
 void expect_same_particles_and_bonds(const Sample& a, const Sample& b) {
   EXPECT_EQ(a.box.lower, b.box.lower);
@@ -87,7 +87,8 @@ TEST(LammpsData, ReadsAFileWrittenByLammps) {
   EXPECT_EQ(s.id, (std::vector<std::int64_t>{0, 2, 1}));  // rupture id = atom-ID - 1, file order kept
   EXPECT_EQ(s.radius[1], 0.5);
   EXPECT_EQ(s.density, 0.002);
-  EXPECT_EQ(s.group, (std::vector<ParticleGroup>{ParticleGroup::bottom, ParticleGroup::top, ParticleGroup::free}));
+  EXPECT_EQ(s.group,
+            (std::vector<ParticleGroup>{ParticleGroup::bottom, ParticleGroup::top, ParticleGroup::free}));
   ASSERT_EQ(s.bonds.size(), 2u);
   EXPECT_EQ(s.bonds[0].i, 0u);
   EXPECT_EQ(s.bonds[0].j, 2u);
@@ -112,7 +113,8 @@ TEST(OwnFormat, TruncatedFileIsRejectedNamingTheLine) {
   const std::string cut = text.substr(0, text.size() / 3);  // ends inside the particles
   const auto cut_at_line = cut.substr(0, cut.rfind('\n') + 1);
   EXPECT_THAT([&] { parse_own(cut_at_line, "t.sample"); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("t.sample:"), HasSubstr("truncated"), HasSubstr("particle"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("t.sample:"), HasSubstr("truncated"), HasSubstr("particle"))));
   // A line cut in the middle gives a short line.
   EXPECT_THAT([&] { parse_own(cut, "t.sample"); }, ThrowsMessage<InputError>(HasSubstr("t.sample:")));
   // Missing the last line.
@@ -123,10 +125,13 @@ TEST(OwnFormat, TruncatedFileIsRejectedNamingTheLine) {
 TEST(OwnFormat, CorruptContentIsRejectedWithTheFix) {
   const std::string head = "rupture-sample 1\nbox 0 0 0 1 1 1\ndensity 0.00025\nparticles 2\n";
   const auto parse = [](const std::string& text) { parse_own(text, "c.sample"); };
-  EXPECT_THAT([&] { parse("rupture-sample 2\n"); }, ThrowsMessage<InputError>(HasSubstr("version 2 is not supported")));
-  EXPECT_THAT([&] { parse("hello\n"); }, ThrowsMessage<InputError>(HasSubstr("c.sample:1: not a rupture sample")));
-  EXPECT_THAT([&] { parse(head + "0 0.5 0.5 0.5 0.2 free\n1 0.5 0.5 0.5 0.2 middle\nbonds 0\nend\n"); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("c.sample:6"), HasSubstr("use free, bottom or top"))));
+  EXPECT_THAT([&] { parse("rupture-sample 2\n"); },
+              ThrowsMessage<InputError>(HasSubstr("version 2 is not supported")));
+  EXPECT_THAT([&] { parse("hello\n"); },
+              ThrowsMessage<InputError>(HasSubstr("c.sample:1: not a rupture sample")));
+  EXPECT_THAT(
+      [&] { parse(head + "0 0.5 0.5 0.5 0.2 free\n1 0.5 0.5 0.5 0.2 middle\nbonds 0\nend\n"); },
+      ThrowsMessage<InputError>(AllOf(HasSubstr("c.sample:6"), HasSubstr("use free, bottom or top"))));
   EXPECT_THAT([&] { parse(head + "0 0.5 0.5 0.5 0.2 free\n0 0.5 0.5 0.5 0.2 free\nbonds 0\nend\n"); },
               ThrowsMessage<InputError>(HasSubstr("id 0 appears twice")));
   EXPECT_THAT([&] { parse(head + "0 0.5 0.5 0.5 -0.2 free\n"); },
@@ -144,8 +149,9 @@ TEST(LammpsData, TruncatedOrUnsupportedFilesAreRejected) {
   const auto cut = text.substr(0, text.find("\n", text.size() / 2) + 1);
   EXPECT_THAT([&] { parse_lammps_data(cut, "t.data"); }, ThrowsMessage<InputError>(HasSubstr("truncated")));
   const std::string head = "title\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n\n";
-  EXPECT_THAT([&] { parse_lammps_data(head + "Atoms # bond\n\n1 1 1 0.5 0.5 0.5\n", "b.data"); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("has no particle radius"), HasSubstr("hybrid sphere bond"))));
+  EXPECT_THAT(
+      [&] { parse_lammps_data(head + "Atoms # bond\n\n1 1 1 0.5 0.5 0.5\n", "b.data"); },
+      ThrowsMessage<InputError>(AllOf(HasSubstr("has no particle radius"), HasSubstr("hybrid sphere bond"))));
   EXPECT_THAT([&] { parse_lammps_data(head + "Atoms\n\n1 1 0.5 0.5 0.5 1 1\n", "b.data"); },
               ThrowsMessage<InputError>(HasSubstr("does not name its atom style")));
   EXPECT_THAT([&] { parse_lammps_data(head + "Atoms # sphere\n\n1 1 0.4 1 0.5 0.5\n", "b.data"); },
@@ -156,8 +162,9 @@ TEST(LsmGeometry, TruncatedOrUnsupportedFilesAreRejected) {
   const std::string text = format_lsm_geometry(small_tissue().sample);
   const auto cut = text.substr(0, text.find("\n", text.size() / 2) + 1);
   EXPECT_THAT([&] { parse_lsm_geometry(cut, "t.geo"); }, ThrowsMessage<InputError>(HasSubstr("truncated")));
-  EXPECT_THAT([&] { parse_lsm_geometry("LSMGeometry 1.2\nBoundingBox 0 0 0 1 1 1\nDimension 2D\n", "t.geo"); },
-              ThrowsMessage<InputError>(HasSubstr("t.geo:3: only 3D")));
+  EXPECT_THAT(
+      [&] { parse_lsm_geometry("LSMGeometry 1.2\nBoundingBox 0 0 0 1 1 1\nDimension 2D\n", "t.geo"); },
+      ThrowsMessage<InputError>(HasSubstr("t.geo:3: only 3D")));
 }
 
 TEST(SampleFormat, NamesAndExtensions) {
@@ -166,7 +173,8 @@ TEST(SampleFormat, NamesAndExtensions) {
   EXPECT_EQ(sample_format_for_path("x.vtp"), SampleFormat::vtp);
   EXPECT_EQ(sample_format_for_path("x.sample"), SampleFormat::own);
   EXPECT_EQ(sample_format_from_name("lsm"), SampleFormat::lsm);
-  EXPECT_THAT([] { sample_format_from_name("xyz"); }, ThrowsMessage<InputError>(HasSubstr("own, lammps, lsm, vtp")));
+  EXPECT_THAT([] { sample_format_from_name("xyz"); },
+              ThrowsMessage<InputError>(HasSubstr("own, lammps, lsm, vtp")));
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 #include "sample/generator.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <vector>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
 
 #include "core/error.hpp"
 #include "sample/formats.hpp"
@@ -42,8 +42,9 @@ TEST(Generator, NoOverlapsAndEverySphereInsideTheBox) {
   for (std::size_t k = 0; k < s.size(); ++k) {
     const Vec3 p = s.position[k];
     const double r = s.radius[k], eps = 1e-9;
-    ASSERT_TRUE(p.x - r >= s.box.lower.x - eps && p.x + r <= s.box.upper.x + eps && p.y - r >= s.box.lower.y - eps &&
-                p.y + r <= s.box.upper.y + eps && p.z - r >= s.box.lower.z - eps && p.z + r <= s.box.upper.z + eps)
+    ASSERT_TRUE(p.x - r >= s.box.lower.x - eps && p.x + r <= s.box.upper.x + eps &&
+                p.y - r >= s.box.lower.y - eps && p.y + r <= s.box.upper.y + eps &&
+                p.z - r >= s.box.lower.z - eps && p.z + r <= s.box.upper.z + eps)
         << "particle " << k;
   }
 }
@@ -52,7 +53,7 @@ TEST(Generator, SolidFractionCoordinationAndCountsInTargetRange) {
   const SampleStats stats = compute_stats(small_tissue().sample);
   EXPECT_GE(stats.solid_fraction, 0.55);
   EXPECT_LE(stats.solid_fraction, 0.66);
-  EXPECT_GE(stats.mean_coordination, 8.0);   // the paper's tissue: ~10 bonds per particle
+  EXPECT_GE(stats.mean_coordination, 8.0);  // the paper's tissue: ~10 bonds per particle
   EXPECT_LE(stats.mean_coordination, 12.0);
   EXPECT_EQ(stats.isolated, 0u);
   EXPECT_GT(stats.particles, 1500u);
@@ -117,7 +118,8 @@ TEST(Generator, GapFillingShiftsTheFinalRadiiTowardsSmallOnes) {
   const auto params = preset_params("tissue-small");
   const TruncatedLogNormal law(params.r_min, params.r_max, params.r_median, params.r_sigma);
   const auto& s = small_tissue().sample;
-  const double small = static_cast<double>(std::count_if(s.radius.begin(), s.radius.end(), [](double r) { return r < 0.25; }));
+  const double small =
+      static_cast<double>(std::count_if(s.radius.begin(), s.radius.end(), [](double r) { return r < 0.25; }));
   EXPECT_GT(small / static_cast<double>(s.size()), 2.0 * law.cdf(0.25));
 }
 

@@ -1,6 +1,7 @@
 // `rupture sample` end to end: generate, info --json, convert, errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
 #include "sample/formats.hpp"
@@ -37,7 +38,8 @@ TEST(SampleCli, SameSeedSameFileAndConvertRoundTrips) {
   ASSERT_EQ(run_rupture("sample generate --preset tissue-small --seed 11 --out '" + a + "'").exit_code, 0);
   ASSERT_EQ(run_rupture("sample generate --preset tissue-small --seed 11 --out '" + b + "'").exit_code, 0);
   EXPECT_EQ(testing::slurp(a), testing::slurp(b));
-  const auto data = (dir / "a.data").string(), geo = (dir / "a.geo").string(), back = (dir / "back.sample").string();
+  const auto data = (dir / "a.data").string(), geo = (dir / "a.geo").string(),
+             back = (dir / "back.sample").string();
   ASSERT_EQ(run_rupture("sample convert '" + a + "' '" + data + "'").exit_code, 0);
   ASSERT_EQ(run_rupture("sample convert '" + data + "' '" + geo + "'").exit_code, 0);
   ASSERT_EQ(run_rupture("sample convert '" + geo + "' '" + back + "'").exit_code, 0);
@@ -48,7 +50,9 @@ TEST(SampleCli, SameSeedSameFileAndConvertRoundTrips) {
 TEST(SampleCli, OptionsOverrideThePresetAndFormatCanBeForced) {
   const testing::TempDir dir;
   const auto out = (dir / "x.txt").string();
-  const auto r = run_rupture("sample generate --preset tissue-small --width 8 --height 6 --depth 3 --seed 1 --format lsm --out '" + out + "'");
+  const auto r = run_rupture(
+      "sample generate --preset tissue-small --width 8 --height 6 --depth 3 --seed 1 --format lsm --out '" +
+      out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Sample s = load_sample(out);
   EXPECT_EQ(s.box.size(), (Vec3{8.0, 6.0, 3.0}));
@@ -57,7 +61,8 @@ TEST(SampleCli, OptionsOverrideThePresetAndFormatCanBeForced) {
 
 TEST(SampleCli, BadInputExitsWithCodeTwoAndTheFix) {
   const testing::TempDir dir;
-  const auto r = run_rupture("sample generate --preset tissue-large --seed 1 --out '" + (dir / "x.sample").string() + "'");
+  const auto r = run_rupture("sample generate --preset tissue-large --seed 1 --out '" +
+                             (dir / "x.sample").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("use one of: tissue, tissue-small"));
   const auto bad = dir / "bad.sample";

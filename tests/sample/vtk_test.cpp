@@ -1,13 +1,13 @@
 #include "io/vtk.hpp"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "sample/formats.hpp"
 #include "sample_fixture.hpp"
@@ -55,7 +55,8 @@ XmlElement parse_xml(const std::string& xml) {
     k = end + 1;
     if (tag.front() == '?') continue;
     if (tag.front() == '/') {
-      if (open.size() < 2 || open.back()->name != tag.substr(1)) throw std::runtime_error("mismatched </" + tag.substr(1) + ">");
+      if (open.size() < 2 || open.back()->name != tag.substr(1))
+        throw std::runtime_error("mismatched </" + tag.substr(1) + ">");
       open.pop_back();
       continue;
     }
@@ -135,7 +136,8 @@ TEST(Vtp, ArbitraryLineArraysAndEscapedNames) {
   data.comments = {"made by a test -- with dashes"};
   const XmlElement doc = parse_xml(io::format_vtp(data));
   const XmlElement& piece = *doc.child("VTKFile")->child("PolyData")->child("Piece");
-  EXPECT_EQ(numbers(array_named(*piece.child("CellData"), "extension &lt;mm&gt;")), (std::vector<double>{0.25, -1e-3}));
+  EXPECT_EQ(numbers(array_named(*piece.child("CellData"), "extension &lt;mm&gt;")),
+            (std::vector<double>{0.25, -1e-3}));
   EXPECT_EQ(array_named(*piece.child("PointData"), "velocity").attributes.at("NumberOfComponents"), "3");
 }
 
