@@ -12,7 +12,8 @@ using namespace rupture::fbm;
 
 void BM_DrawThresholds(benchmark::State& state) {
   const Weibull d(2.0, 1.0);
-  for (auto _ : state) benchmark::DoNotOptimize(draw_thresholds(d, static_cast<std::size_t>(state.range(0)), 1));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(draw_thresholds(d, static_cast<std::size_t>(state.range(0)), 1));
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_DrawThresholds)->Arg(1000000)->Arg(10000000)->Unit(benchmark::kMillisecond);

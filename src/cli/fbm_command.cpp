@@ -1,14 +1,14 @@
 // cli/fbm_command: `rupture fbm theory | curves | simulate`, the fiber bundle model from the
 // command line. Owns option parsing, tables, CSV and JSON output; the physics is in src/fbm.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr const char* units_note =
-    "per N kappa = 1: strain dimensionless, force F/(N kappa), energies E/(N kappa), energy rate dE_e/dx / (N kappa)";
+    "per N kappa = 1: strain dimensionless, force F/(N kappa), energies E/(N kappa), energy rate dE_e/dx / "
+    "(N kappa)";
 
 std::unique_ptr<fbm::StrengthDistribution> load_distribution(const std::string& spec) {
   return fbm::parse_distribution_spec(spec, [](const std::string& path) { return io::read_text_file(path); });
@@ -63,26 +64,31 @@ std::string characteristics_table(const fbm::Characteristics& c) {
   row("F_c", num(c.F_c), "force maximum F/(N kappa)");
   row("x_m", format_optional(c.x_m), "strain of the elastic-energy maximum");
   row("E_max", format_optional(c.E_max), "elastic-energy maximum E_e/(N kappa)");
-  row("x_p", num(c.x_p), c.Erate_max_at_cutoff ? "precursor strain: at the lower cut-off (see note)"
-                                                : "precursor strain (energy-rate maximum)");
-  row("Erate_max", num(c.Erate_max), c.Erate_max_at_cutoff ? "energy-rate supremum: left limit at the cut-off"
-                                                           : "energy-rate maximum dE_e/dx / (N kappa)");
+  row("x_p", num(c.x_p),
+      c.Erate_max_at_cutoff ? "precursor strain: at the lower cut-off (see note)"
+                            : "precursor strain (energy-rate maximum)");
+  row("Erate_max", num(c.Erate_max),
+      c.Erate_max_at_cutoff ? "energy-rate supremum: left limit at the cut-off"
+                            : "energy-rate maximum dE_e/dx / (N kappa)");
   row("delta_x", num(c.delta_x), "x_c - x_p");
   row("Gamma", format_optional(c.Gamma), "(x_m - x_c) / delta_x");
   row("A_r", format_optional(c.A_r), "E_max / (x_p Erate_max)");
   row("E_d(x_c)", num(c.E_d_at_x_c), "damage energy at x_c, E_d/(N kappa)");
   if (c.Erate_max_at_cutoff)
-    table += "  note: the energy rate jumps down at the lower cut-off of the thresholds and is largest just below it;\n"
-             "        x_p is the cut-off and Erate_max the supremum there (not attained).\n";
+    table +=
+        "  note: the energy rate jumps down at the lower cut-off of the thresholds and is largest just below "
+        "it;\n"
+        "        x_p is the cut-off and Erate_max the supremum there (not attained).\n";
   return table;
 }
 
 std::string csv_text(const std::vector<fbm::CurvePoint>& curve, const std::vector<std::string>& comments) {
   std::string text;
   for (const auto& line : comments) text += "# " + line + "\n";
-  text += io::format_csv_header({"strain[1]", "force[1]", "elastic_energy[1]", "damage_energy[1]", "energy_rate[1]",
-                                 "broken_fraction[1]"});
-  for (const auto& p : curve) text += io::format_csv_row({p.x, p.F, p.E_e, p.E_d, p.Erate, p.broken_fraction});
+  text += io::format_csv_header({"strain[1]", "force[1]", "elastic_energy[1]", "damage_energy[1]",
+                                 "energy_rate[1]", "broken_fraction[1]"});
+  for (const auto& p : curve)
+    text += io::format_csv_row({p.x, p.F, p.E_e, p.E_d, p.Erate, p.broken_fraction});
   return text;
 }
 
@@ -90,30 +96,38 @@ void add_theory(CLI::App& fbm_app) {
   auto* app = fbm_app.add_subcommand("theory", "Characteristic points of the ELS bundle (N -> infinity)");
   auto spec = std::make_shared<std::string>("uniform");
   auto as_json = std::make_shared<bool>(false);
-  app->add_option("--dist", *spec, "Threshold distribution: uniform[:a=A,b=B], powerlaw:alpha=A, weibull:k=K[,lambda=L], file:PATH")
+  app->add_option(
+         "--dist", *spec,
+         "Threshold distribution: uniform[:a=A,b=B], powerlaw:alpha=A, weibull:k=K[,lambda=L], file:PATH")
       ->capture_default_str();
   app->add_flag("--json", *as_json, "Print JSON instead of a table");
   app->callback([spec, as_json] {
     const auto dist = load_distribution(*spec);
     const auto c = fbm::theory_characteristics(*dist);
     if (*as_json) {
-      json doc{{"version", version_string}, {"command", "fbm theory"}, {"dist", dist->spec()}, {"units", units_note}};
+      json doc{{"version", version_string},
+               {"command", "fbm theory"},
+               {"dist", dist->spec()},
+               {"units", units_note}};
       doc.update(characteristics_json(c));
       fmt::print("{}\n", doc.dump(2));
     } else {
-      fmt::print("ELS fiber bundle, N -> infinity, dist {}\n{}\n{}", dist->spec(), units_note, characteristics_table(c));
+      fmt::print("ELS fiber bundle, N -> infinity, dist {}\n{}\n{}", dist->spec(), units_note,
+                 characteristics_table(c));
     }
   });
 }
 
 void add_curves(CLI::App& fbm_app) {
-  auto* app = fbm_app.add_subcommand("curves", "Analytic ELS curves x, F, E_e, E_d, energy rate on a strain grid (CSV)");
+  auto* app = fbm_app.add_subcommand(
+      "curves", "Analytic ELS curves x, F, E_e, E_d, energy rate on a strain grid (CSV)");
   struct Options {
     std::string spec = "uniform", out;
     std::size_t points = 1001;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("--dist", o->spec, "Threshold distribution (see `fbm theory --help`)")->capture_default_str();
+  app->add_option("--dist", o->spec, "Threshold distribution (see `fbm theory --help`)")
+      ->capture_default_str();
   app->add_option("--out", o->out, "CSV file to write")->required();
   app->add_option("--points", o->points, "Number of strains, equally spaced from 0 to the end of the support")
       ->capture_default_str()
@@ -121,30 +135,38 @@ void add_curves(CLI::App& fbm_app) {
   app->callback([o] {
     const auto dist = load_distribution(o->spec);
     const auto curve = fbm::theory_curve(*dist, o->points);
-    io::write_file_atomically(o->out, csv_text(curve, {fmt::format("rupture {}", version_string),
-                                                       fmt::format("fbm curves --dist {} --points {}", dist->spec(), o->points),
-                                                       std::string("ELS theory, ") + units_note}));
+    io::write_file_atomically(
+        o->out, csv_text(curve, {fmt::format("rupture {}", version_string),
+                                 fmt::format("fbm curves --dist {} --points {}", dist->spec(), o->points),
+                                 std::string("ELS theory, ") + units_note}));
   });
 }
 
 void add_simulate(CLI::App& fbm_app) {
-  auto* app = fbm_app.add_subcommand("simulate", "Simulate a finite bundle (strain- or load-controlled, ELS or LLS)");
+  auto* app =
+      fbm_app.add_subcommand("simulate", "Simulate a finite bundle (strain- or load-controlled, ELS or LLS)");
   struct Options {
     std::string spec = "uniform", sharing = "els", control, out, bursts, json_out;
     std::size_t fibers = 1000000, points = 2001;
     std::uint64_t seed = 1;
   };
   auto o = std::make_shared<Options>();
-  app->add_option("--dist", o->spec, "Threshold distribution (see `fbm theory --help`)")->capture_default_str();
-  app->add_option("--fibers", o->fibers, "Number of fibers N")->capture_default_str()->check(CLI::Range(std::size_t{2}, std::size_t{1} << 31));
-  app->add_option("--seed", o->seed, "Random seed (same seed, same bundle on every platform)")->capture_default_str();
+  app->add_option("--dist", o->spec, "Threshold distribution (see `fbm theory --help`)")
+      ->capture_default_str();
+  app->add_option("--fibers", o->fibers, "Number of fibers N")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{2}, std::size_t{1} << 31));
+  app->add_option("--seed", o->seed, "Random seed (same seed, same bundle on every platform)")
+      ->capture_default_str();
   app->add_option("--sharing", o->sharing, "Load sharing: els (equal) or lls (nearest survivors on a ring)")
       ->capture_default_str()
       ->check(CLI::IsMember({"els", "lls"}));
-  app->add_option("--control", o->control, "strain (default for els) or load (default, and the only choice, for lls)")
+  app->add_option("--control", o->control,
+                  "strain (default for els) or load (default, and the only choice, for lls)")
       ->check(CLI::IsMember({"strain", "load"}));
   app->add_option("--out", o->out, "CSV curve to write");
-  app->add_option("--bursts", o->bursts, "CSV of burst sizes (load control; default: beside --out as NAME_bursts.csv)");
+  app->add_option("--bursts", o->bursts,
+                  "CSV of burst sizes (load control; default: beside --out as NAME_bursts.csv)");
   app->add_option("--json", o->json_out, "Write the JSON summary to this file ('-' prints it)");
   app->add_option("--points", o->points, "At most this many rows in the CSV curve")
       ->capture_default_str()
@@ -167,12 +189,16 @@ void add_simulate(CLI::App& fbm_app) {
                                  : fbm::load_controlled_lls(thresholds, o->points);
       result = load->result;
     }
-    const std::string command = fmt::format("fbm simulate --dist {} --fibers {} --seed {} --sharing {} --control {} --points {}",
-                                            dist->spec(), o->fibers, o->seed, o->sharing, control, o->points);
+    const std::string command =
+        fmt::format("fbm simulate --dist {} --fibers {} --seed {} --sharing {} --control {} --points {}",
+                    dist->spec(), o->fibers, o->seed, o->sharing, control, o->points);
     const std::string units = std::string(units_note) + " (force per fiber F/N)";
     if (!o->out.empty()) {
-      std::vector<std::string> comments{fmt::format("rupture {}", version_string), command, "finite bundle, " + units};
-      if (control == "load") comments.push_back("rows: the stable states before each burst, interpolated onto equally spaced strains up to x_c");
+      std::vector<std::string> comments{fmt::format("rupture {}", version_string), command,
+                                        "finite bundle, " + units};
+      if (control == "load")
+        comments.push_back(
+            "rows: the stable states before each burst, interpolated onto equally spaced strains up to x_c");
       if (o->sharing == "lls") comments.push_back("LLS: strain = mean strain of the intact fibers");
       io::write_file_atomically(o->out, csv_text(result.curve, comments));
     }
@@ -182,9 +208,10 @@ void add_simulate(CLI::App& fbm_app) {
       bursts_path = (out.parent_path() / (out.stem().string() + "_bursts.csv")).string();
     }
     if (load && !bursts_path.empty()) {
-      std::string text = fmt::format("# rupture {}\n# {}\n# bursts (avalanches) of the quasi-static load-controlled run; "
-                                     "the final burst ({} fibers) that breaks the rest is not counted\n",
-                                     version_string, command, load->final_burst);
+      std::string text = fmt::format(
+          "# rupture {}\n# {}\n# bursts (avalanches) of the quasi-static load-controlled run; "
+          "the final burst ({} fibers) that breaks the rest is not counted\n",
+          version_string, command, load->final_burst);
       text += io::format_csv_header({"size[fibers]", "count[1]"});
       for (const auto& [size, count] : load->burst_counts)
         text += io::format_csv_row({static_cast<double>(size), static_cast<double>(count)});
@@ -213,11 +240,11 @@ void add_simulate(CLI::App& fbm_app) {
       fmt::print("{}\n", summary.dump(2));
     } else {
       if (!o->json_out.empty()) io::write_json_atomically(o->json_out, summary);
-      fmt::print("finite bundle, N = {}, seed {}, {} sharing, {} control, dist {}\n{}\n{}", o->fibers, o->seed, o->sharing,
-                 control, dist->spec(), units, characteristics_table(result.measured));
+      fmt::print("finite bundle, N = {}, seed {}, {} sharing, {} control, dist {}\n{}\n{}", o->fibers,
+                 o->seed, o->sharing, control, dist->spec(), units, characteristics_table(result.measured));
       if (load)
-        fmt::print("  {} bursts before the final one, which broke {} fibers\n", summary["bursts"].get<std::size_t>(),
-                   load->final_burst);
+        fmt::print("  {} bursts before the final one, which broke {} fibers\n",
+                   summary["bursts"].get<std::size_t>(), load->final_burst);
     }
   });
 }
@@ -225,7 +252,8 @@ void add_simulate(CLI::App& fbm_app) {
 }  // namespace
 
 void add_fbm_command(CLI::App& app, int& /*exit_code*/) {
-  auto* fbm_app = app.add_subcommand("fbm", "Fiber bundle model: ELS theory, curves and finite-bundle simulation");
+  auto* fbm_app =
+      app.add_subcommand("fbm", "Fiber bundle model: ELS theory, curves and finite-bundle simulation");
   fbm_app->require_subcommand(1);
   add_theory(*fbm_app);
   add_curves(*fbm_app);

@@ -68,13 +68,15 @@ std::vector<CurvePoint> resample_uniform(std::vector<CurvePoint> states, std::si
   const double x_end = states.back().x;
   std::size_t j = 0;
   for (std::size_t i = 0; i < points; ++i) {
-    const double x = i + 1 == points ? x_end : x_end * static_cast<double>(i) / static_cast<double>(points - 1);
+    const double x =
+        i + 1 == points ? x_end : x_end * static_cast<double>(i) / static_cast<double>(points - 1);
     while (j + 2 < states.size() && states[j + 1].x < x) ++j;
     const CurvePoint& a = states[j];
     const CurvePoint& b = states[j + 1];
     const double w = b.x > a.x ? std::clamp((x - a.x) / (b.x - a.x), 0.0, 1.0) : 1.0;
     const auto mix = [w](double u, double v) { return u + w * (v - u); };
-    curve.push_back({x, mix(a.F, b.F), mix(a.E_e, b.E_e), mix(a.E_d, b.E_d), 0.0, mix(a.broken_fraction, b.broken_fraction)});
+    curve.push_back({x, mix(a.F, b.F), mix(a.E_e, b.E_e), mix(a.E_d, b.E_d), 0.0,
+                     mix(a.broken_fraction, b.broken_fraction)});
   }
   return curve;
 }
@@ -84,8 +86,8 @@ std::vector<CurvePoint> resample_uniform(std::vector<CurvePoint> states, std::si
 // difference quotient; falls back to the largest sample when the fit has no maximum inside.
 void measure_precursor(const std::vector<CurvePoint>& curve, Characteristics& c) {
   if (curve.empty()) return;
-  const auto top = std::max_element(curve.begin(), curve.end(),
-                                    [](const CurvePoint& a, const CurvePoint& b) { return a.Erate < b.Erate; });
+  const auto top = std::max_element(
+      curve.begin(), curve.end(), [](const CurvePoint& a, const CurvePoint& b) { return a.Erate < b.Erate; });
   c.x_p = top->x;
   c.Erate_max = top->Erate;
   const double lo = 0.9 * top->x, hi = 1.1 * top->x, x0 = top->x;
@@ -105,9 +107,8 @@ void measure_precursor(const std::vector<CurvePoint>& curve, Characteristics& c)
   }
   if (n < 5) return;
   // Solve the 3x3 system by Cramer's rule.
-  const auto det3 = [](double a, double b, double cc, double d, double e, double f, double g, double h, double i) {
-    return a * (e * i - f * h) - b * (d * i - f * g) + cc * (d * h - e * g);
-  };
+  const auto det3 = [](double a, double b, double cc, double d, double e, double f, double g, double h,
+                       double i) { return a * (e * i - f * h) - b * (d * i - f * g) + cc * (d * h - e * g); };
   const double d = det3(s[0], s[1], s[2], s[1], s[2], s[3], s[2], s[3], s[4]);
   if (d == 0.0) return;
   const double a = det3(t[0], s[1], s[2], t[1], s[2], s[3], t[2], s[3], s[4]) / d;
@@ -129,7 +130,8 @@ BundleCurve finish_curve(std::vector<CurvePoint> curve, Characteristics measured
 
 }  // namespace
 
-std::vector<double> draw_thresholds(const StrengthDistribution& distribution, std::size_t fibers, std::uint64_t seed) {
+std::vector<double> draw_thresholds(const StrengthDistribution& distribution, std::size_t fibers,
+                                    std::uint64_t seed) {
   std::vector<double> thresholds(fibers);
   const std::size_t blocks = (fibers + draw_block - 1) / draw_block;
   // Each block has its own random stream, so the result does not depend on the thread count.
@@ -137,7 +139,8 @@ std::vector<double> draw_thresholds(const StrengthDistribution& distribution, st
   for (std::size_t block = 0; block < blocks; ++block) {
     Rng rng(seed, RandomStream::fbm_thresholds, block);
     const std::size_t end = std::min(fibers, (block + 1) * draw_block);
-    for (std::size_t i = block * draw_block; i < end; ++i) thresholds[i] = distribution.quantile(rng.uniform01());
+    for (std::size_t i = block * draw_block; i < end; ++i)
+      thresholds[i] = distribution.quantile(rng.uniform01());
   }
   return thresholds;
 }
@@ -190,7 +193,8 @@ BundleCurve strain_controlled(std::vector<double> thresholds, std::size_t points
       ++broken;
     }
     const double intact = static_cast<double>(n - broken) * inv_n;
-    curve.push_back({x, x * intact, 0.5 * x * x * intact, 0.5 * damage * inv_n, 0.0, static_cast<double>(broken) * inv_n});
+    curve.push_back({x, x * intact, 0.5 * x * x * intact, 0.5 * damage * inv_n, 0.0,
+                     static_cast<double>(broken) * inv_n});
   }
   return finish_curve(std::move(curve), c);
 }
@@ -207,8 +211,8 @@ LoadControlled load_controlled_els(std::vector<double> thresholds, std::size_t p
   while (k < n) {
     // Raise the load until the weakest survivor breaks: total force F = t_k (N - k).
     const double force = thresholds[k] * static_cast<double>(n - k);
-    const CurvePoint state{thresholds[k], force * inv_n, 0.5 * thresholds[k] * force * inv_n, 0.5 * damage * inv_n, 0.0,
-                           static_cast<double>(k) * inv_n};
+    const CurvePoint state{thresholds[k],        force * inv_n, 0.5 * thresholds[k] * force * inv_n,
+                           0.5 * damage * inv_n, 0.0,           static_cast<double>(k) * inv_n};
     thinner.add(state);
     maxima.add(state);
     // Hold the load: fiber j breaks while its threshold is below the strain F / (N - j).
@@ -220,8 +224,10 @@ LoadControlled load_controlled_els(std::vector<double> thresholds, std::size_t p
       ++j;
     }
     ++run.load_steps;
-    if (j == n) run.final_burst = j - k;
-    else ++run.burst_counts[j - k];
+    if (j == n)
+      run.final_burst = j - k;
+    else
+      ++run.burst_counts[j - k];
     k = j;
   }
   run.result = finish_curve(resample_uniform(thinner.finish(), points), maxima.c);
@@ -264,8 +270,11 @@ LoadControlled load_controlled_lls(const std::vector<double>& thresholds, std::s
     heap.pop();
     if (!intact[first] || key != thresholds[first] / multiplier[first]) continue;
     sigma = std::max(sigma, key);
-    const CurvePoint state{sigma * static_cast<double>(n) / static_cast<double>(survivors), sigma,
-                           0.5 * sigma * sigma * sum_m2 * inv_n, 0.5 * damage * inv_n, 0.0,
+    const CurvePoint state{sigma * static_cast<double>(n) / static_cast<double>(survivors),
+                           sigma,
+                           0.5 * sigma * sigma * sum_m2 * inv_n,
+                           0.5 * damage * inv_n,
+                           0.0,
                            static_cast<double>(n - survivors) * inv_n};
     thinner.add(state);
     maxima.add(state);
@@ -296,8 +305,10 @@ LoadControlled load_controlled_lls(const std::vector<double>& thresholds, std::s
       if (r != l) reload(r);
     }
     ++run.load_steps;
-    if (survivors == 0) run.final_burst = burst;
-    else ++run.burst_counts[burst];
+    if (survivors == 0)
+      run.final_burst = burst;
+    else
+      ++run.burst_counts[burst];
   }
   run.result = finish_curve(resample_uniform(thinner.finish(), points), maxima.c);
   return run;

@@ -15,7 +15,8 @@ namespace rupture::fbm {
 
 // N thresholds in ring order: fiber i gets quantile(u_i), u_i from Rng(seed, fbm_thresholds,
 // block) with blocks of 2^16 fibers, so the bundle is the same for every thread count and platform.
-std::vector<double> draw_thresholds(const StrengthDistribution& distribution, std::size_t fibers, std::uint64_t seed);
+std::vector<double> draw_thresholds(const StrengthDistribution& distribution, std::size_t fibers,
+                                    std::uint64_t seed);
 
 // A measured curve: `curve` is decimated to at most the requested number of points; the
 // characteristics are measured on the full data for F and E_e, and for ℰ (which a finite bundle

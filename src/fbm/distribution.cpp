@@ -1,13 +1,13 @@
 #include "fbm/distribution.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <boost/math/distributions/uniform.hpp>
+#include <boost/math/distributions/weibull.hpp>
 #include <charconv>
 #include <cmath>
 #include <map>
-
-#include <boost/math/distributions/uniform.hpp>
-#include <boost/math/distributions/weibull.hpp>
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 
@@ -50,7 +50,8 @@ std::map<std::string, double> parse_parameters(std::string_view name, std::strin
       throw InputError(dist_option, fmt::format("unknown parameter '{}' for {}", key, name), usage);
     double value = 0.0;
     if (!parse_number(item.substr(equals + 1), value))
-      throw InputError(dist_option, fmt::format("{}='{}' is not a finite number", key, trim(item.substr(equals + 1))),
+      throw InputError(dist_option,
+                       fmt::format("{}='{}' is not a finite number", key, trim(item.substr(equals + 1))),
                        usage);
     if (!values.emplace(key, value).second)
       throw InputError(dist_option, fmt::format("parameter '{}' given twice", key), usage);
@@ -73,7 +74,9 @@ Uniform::Uniform(double a, double b) : a_(a), b_(b) {
                      "e.g. --dist uniform:a=0.2,b=1");
 }
 std::string Uniform::spec() const { return fmt::format("uniform:a={},b={}", a_, b_); }
-double Uniform::quantile(double u) const { return boost::math::quantile(boost::math::uniform_distribution<>(a_, b_), u); }
+double Uniform::quantile(double u) const {
+  return boost::math::quantile(boost::math::uniform_distribution<>(a_, b_), u);
+}
 double Uniform::pdf(double x) const {
   return x < a_ || x > b_ ? 0.0 : boost::math::pdf(boost::math::uniform_distribution<>(a_, b_), x);
 }
@@ -88,7 +91,8 @@ double Uniform::cdf(double x) const {
 PowerLaw::PowerLaw(double alpha) : alpha_(alpha) {
   if (!(alpha > -1.0))
     throw InputError(dist_option, fmt::format("powerlaw needs alpha > -1 (got alpha={})", alpha),
-                     "p(x) = (1+alpha) x^alpha is normalisable on [0, 1] only for alpha > -1, e.g. --dist powerlaw:alpha=2");
+                     "p(x) = (1+alpha) x^alpha is normalisable on [0, 1] only for alpha > -1, e.g. --dist "
+                     "powerlaw:alpha=2");
 }
 std::string PowerLaw::spec() const { return fmt::format("powerlaw:alpha={}", alpha_); }
 double PowerLaw::quantile(double u) const { return std::pow(u, 1.0 / (1.0 + alpha_)); }
@@ -106,7 +110,8 @@ double PowerLaw::cdf(double x) const { return x <= 0.0 ? 0.0 : x >= 1.0 ? 1.0 : 
 
 Weibull::Weibull(double shape_k, double scale_lambda) : k_(shape_k), lambda_(scale_lambda) {
   if (!(k_ > 0.0))
-    throw InputError(dist_option, fmt::format("weibull needs k > 0 (got k={})", k_), "e.g. --dist weibull:k=2,lambda=1");
+    throw InputError(dist_option, fmt::format("weibull needs k > 0 (got k={})", k_),
+                     "e.g. --dist weibull:k=2,lambda=1");
   if (!(lambda_ > 0.0))
     throw InputError(dist_option, fmt::format("weibull needs lambda > 0 (got lambda={})", lambda_),
                      "e.g. --dist weibull:k=2,lambda=1");
@@ -135,7 +140,8 @@ double Weibull::cdf(double x) const {
 
 Empirical::Empirical(std::vector<double> thresholds, std::string source)
     : sorted_(std::move(thresholds)), source_(std::move(source)) {
-  if (sorted_.empty()) throw InputError(source_, "no thresholds", "write one threshold (a breaking strain) per line");
+  if (sorted_.empty())
+    throw InputError(source_, "no thresholds", "write one threshold (a breaking strain) per line");
   std::sort(sorted_.begin(), sorted_.end());
 }
 double Empirical::quantile(double u) const {
@@ -160,7 +166,8 @@ std::vector<double> parse_thresholds(std::string_view text, const std::string& s
       throw InputError(where, fmt::format("'{}' is not a number", line),
                        "write one threshold (a breaking strain) per line; '#' starts a comment");
     if (value < 0.0)
-      throw InputError(where, fmt::format("threshold {} is negative", value), "thresholds are breaking strains, >= 0");
+      throw InputError(where, fmt::format("threshold {} is negative", value),
+                       "thresholds are breaking strains, >= 0");
     thresholds.push_back(value);
   }
   if (thresholds.empty())
@@ -180,12 +187,14 @@ std::unique_ptr<StrengthDistribution> parse_distribution_spec(
   }
   if (name == "powerlaw") {
     const auto values = parse_parameters(name, rest, {"alpha"});
-    if (!values.count("alpha")) throw InputError(dist_option, "powerlaw needs alpha", "e.g. --dist powerlaw:alpha=2");
+    if (!values.count("alpha"))
+      throw InputError(dist_option, "powerlaw needs alpha", "e.g. --dist powerlaw:alpha=2");
     return std::make_unique<PowerLaw>(values.at("alpha"));
   }
   if (name == "weibull") {
     const auto values = parse_parameters(name, rest, {"k", "lambda"});
-    if (!values.count("k")) throw InputError(dist_option, "weibull needs the shape k", "e.g. --dist weibull:k=2,lambda=1");
+    if (!values.count("k"))
+      throw InputError(dist_option, "weibull needs the shape k", "e.g. --dist weibull:k=2,lambda=1");
     return std::make_unique<Weibull>(values.at("k"), get_or(values, "lambda", 1.0));
   }
   if (name == "file") {

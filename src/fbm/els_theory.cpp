@@ -1,11 +1,10 @@
 #include "fbm/els_theory.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <limits>
 
 #include "fbm/bundle.hpp"
 
@@ -85,7 +84,8 @@ double ElsTheory::damage_energy(double x) const {
   const double lo = dist_.lower(), hi = std::min(x, dist_.upper());
   if (hi <= lo) return 0.0;
   auto integrand = [this](double y) { return 0.5 * y * y * dist_.pdf(y); };
-  return boost::math::quadrature::gauss_kronrod<double, 31>::integrate(integrand, lo, hi, quadrature_depth, quadrature_tolerance);
+  return boost::math::quadrature::gauss_kronrod<double, 31>::integrate(integrand, lo, hi, quadrature_depth,
+                                                                       quadrature_tolerance);
 }
 
 double ElsTheory::energy_rate(double x) const {
@@ -106,7 +106,7 @@ Characteristics ElsTheory::characteristics() const {
   const auto below = [lo](double x) { return x <= lo; };
   auto dF = [&](double x) { return below(x) ? 1.0 : 1.0 - dist_.cdf(x) - x * dist_.pdf(x); };  // eq. 3
   auto dE = [&](double x) { return below(x) ? x : energy_rate(x); };                           // eq. 10
-  auto dR = [&](double x) {                                                                     // eq. 13
+  auto dR = [&](double x) {                                                                    // eq. 13
     if (below(x)) return 1.0;
     return 1.0 - dist_.cdf(x) - 2.0 * x * dist_.pdf(x) - 0.5 * x * x * dist_.pdf_derivative(x);
   };
@@ -141,7 +141,8 @@ std::vector<CurvePoint> ElsTheory::curve(std::size_t points) const {
     const double lo = std::max(previous, dist_.lower()), hi = std::min(x, dist_.upper());
     if (hi > lo) {
       auto integrand = [this](double y) { return 0.5 * y * y * dist_.pdf(y); };
-      E_d += boost::math::quadrature::gauss_kronrod<double, 31>::integrate(integrand, lo, hi, quadrature_depth, quadrature_tolerance);
+      E_d += boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
+          integrand, lo, hi, quadrature_depth, quadrature_tolerance);
     }
     previous = x;
     curve.push_back({x, force(x), elastic_energy(x), E_d, energy_rate(x), dist_.cdf(x)});
@@ -161,23 +162,27 @@ std::vector<CurvePoint> theory_curve(const StrengthDistribution& distribution, s
   return ElsTheory(dynamic_cast<const ContinuousDistribution&>(distribution)).curve(points);
 }
 
-double burst_size_density(const ContinuousDistribution& distribution, std::size_t size) {
-  const double delta = static_cast<double>(size);
-  // log(Δ^(Δ-1) / Δ!), kept in logs: both factors overflow long before the product does.
-  const double log_prefactor = (delta - 1.0) * std::log(delta) - std::lgamma(delta + 1.0);
-  auto integrand = [&](double x) {
-    const double survivors = 1.0 - distribution.cdf(x);
-    const double p = distribution.pdf(x);
-    if (!(p > 0.0) || !(survivors > 0.0)) return 0.0;
-    const double lambda = x * p / survivors;
-    if (lambda >= 1.0) return 0.0;
-    if (!(lambda > 0.0)) return size == 1 ? p : 0.0;
-    return p * (1.0 - lambda) * std::exp(log_prefactor + (delta - 1.0) * std::log(lambda) - delta * lambda);
-  };
-  const double x_c = ElsTheory(distribution).characteristics().x_c;
-  const double lo = distribution.lower();
-  if (x_c <= lo) return 0.0;
-  return boost::math::quadrature::gauss_kronrod<double, 31>::integrate(integrand, lo, x_c, quadrature_depth, 1e-10);
+std::vector<double> burst_size_distribution(const ContinuousDistribution& distribution,
+                                            std::size_t max_size) {
+  std::vector<double> density(max_size, 0.0);
+  const double lo = distribution.lower(), x_c = ElsTheory(distribution).characteristics().x_c;
+  if (x_c <= lo) return density;  // the bundle fails at once: no bursts before the final one
+  for (std::size_t size = 1; size <= max_size; ++size) {
+    const double delta = static_cast<double>(size);
+    // log(Δ^(Δ-1) / Δ!), kept in logs: both factors overflow long before the product does.
+    const double log_prefactor = (delta - 1.0) * std::log(delta) - std::lgamma(delta + 1.0);
+    auto integrand = [&](double x) {
+      const double survivors = 1.0 - distribution.cdf(x), p = distribution.pdf(x);
+      if (!(p > 0.0) || !(survivors > 0.0)) return 0.0;
+      const double lambda = x * p / survivors;
+      if (lambda >= 1.0) return 0.0;
+      if (!(lambda > 0.0)) return size == 1 ? p : 0.0;
+      return p * (1.0 - lambda) * std::exp(log_prefactor + (delta - 1.0) * std::log(lambda) - delta * lambda);
+    };
+    density[size - 1] = boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
+        integrand, lo, x_c, quadrature_depth, 1e-10);
+  }
+  return density;
 }
 
 }  // namespace rupture::fbm

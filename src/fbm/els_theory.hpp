@@ -20,13 +20,13 @@ struct CurvePoint {
 
 // The characteristic points of a curve (paper eqs. 3, 10, 13, 17, 20), per N κ = 1.
 struct Characteristics {
-  double x_c = 0, F_c = 0;         // force maximum
+  double x_c = 0, F_c = 0;  // force maximum
   // Elastic-energy maximum; not observed under load control, where the bundle collapses at x_c.
   std::optional<double> x_m, E_max;
-  double x_p = 0, Erate_max = 0;   // energy-rate maximum (the precursor)
-  double delta_x = 0;              // x_c - x_p
-  std::optional<double> Gamma;     // (x_m - x_c) / δ_x; undefined when δ_x = 0 or x_m is
-  std::optional<double> A_r;       // E_max / (x_p ℰ_max); undefined when x_p ℰ_max = 0 or E_max is
+  double x_p = 0, Erate_max = 0;  // energy-rate maximum (the precursor)
+  double delta_x = 0;             // x_c - x_p
+  std::optional<double> Gamma;    // (x_m - x_c) / δ_x; undefined when δ_x = 0 or x_m is
+  std::optional<double> A_r;      // E_max / (x_p ℰ_max); undefined when x_p ℰ_max = 0 or E_max is
   double E_d_at_x_c = 0;
   // True when ℰ is largest just below a lower cut-off of the support, where p jumps from 0 and ℰ
   // drops: then x_p is the cut-off and ℰ_max the supremum (the left limit), not an attained value.
@@ -65,7 +65,8 @@ std::vector<CurvePoint> theory_curve(const StrengthDistribution& distribution, s
 
 // Exact ELS burst-size distribution under quasi-static load control (Hemmer and Hansen 1992):
 // D(Δ)/N = Δ^(Δ-1)/Δ! ∫_0^x_c p (1 - λ) λ^(Δ-1) e^(-Δλ) dx with λ = x p / (1 - P), the mean number
-// of further breaks one break triggers. Expected number of bursts of size Δ per fiber.
-double burst_size_density(const ContinuousDistribution& distribution, std::size_t size);
+// of further breaks one break triggers. Element Δ - 1 is the expected number of bursts of size Δ
+// per fiber, for Δ = 1 .. max_size.
+std::vector<double> burst_size_distribution(const ContinuousDistribution& distribution, std::size_t max_size);
 
 }  // namespace rupture::fbm

@@ -1,13 +1,14 @@
 // Distributions and the --dist spec language: values, round trips, and bad input rejected with a
 // message that names the option (or file:line) and the fix.
-#include <cmath>
-#include <string>
+#include "fbm/distribution.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "core/error.hpp"
-#include "fbm/distribution.hpp"
 
 namespace rupture::fbm {
 namespace {
@@ -16,7 +17,9 @@ using ::testing::HasSubstr;
 
 std::string no_file(const std::string& path) { throw InputError(path, "unexpected file read"); }
 
-std::unique_ptr<StrengthDistribution> parse(const std::string& spec) { return parse_distribution_spec(spec, no_file); }
+std::unique_ptr<StrengthDistribution> parse(const std::string& spec) {
+  return parse_distribution_spec(spec, no_file);
+}
 
 // The message of the InputError that `spec` raises ("" if none).
 std::string error_of(const std::string& spec, const std::string& file_text = {}) {
@@ -51,7 +54,8 @@ TEST(DistributionSpec, BadSpecsNameTheOptionAndTheFix) {
   EXPECT_THAT(error_of("weibull:k=two"), HasSubstr("'two' is not a finite number"));
   EXPECT_THAT(error_of("weibull:k=2,k=3"), HasSubstr("given twice"));
   EXPECT_THAT(error_of("file:"), HasSubstr("file needs a path"));
-  for (const char* spec : {"foo", "powerlaw:alpha=-1", "weibull:k=0"}) EXPECT_THAT(error_of(spec), HasSubstr("--dist"));
+  for (const char* spec : {"foo", "powerlaw:alpha=-1", "weibull:k=0"})
+    EXPECT_THAT(error_of(spec), HasSubstr("--dist"));
 }
 
 TEST(Thresholds, CommentsAndBlankLinesAreSkipped) {
@@ -60,7 +64,8 @@ TEST(Thresholds, CommentsAndBlankLinesAreSkipped) {
   EXPECT_EQ(t[0], 0.3);
   EXPECT_EQ(t[1], 0.1);
   EXPECT_EQ(t[2], 0.2);
-  const auto empirical = parse_distribution_spec("file:t.txt", [](const std::string&) { return std::string("0.3\n0.1\n0.2\n"); });
+  const auto empirical = parse_distribution_spec(
+      "file:t.txt", [](const std::string&) { return std::string("0.3\n0.1\n0.2\n"); });
   EXPECT_EQ(empirical->spec(), "file:t.txt");
   EXPECT_EQ(empirical->lower(), 0.1);
   EXPECT_EQ(empirical->upper(), 0.3);
@@ -78,21 +83,25 @@ TEST(Thresholds, BadFilesNameFileAndLine) {
 }
 
 TEST(Distributions, QuantileInvertsTheCdf) {
-  for (const char* spec : {"uniform:a=0.2,b=1", "powerlaw:alpha=-0.6", "powerlaw:alpha=3", "weibull:k=0.6,lambda=2", "weibull:k=3"}) {
+  for (const char* spec : {"uniform:a=0.2,b=1", "powerlaw:alpha=-0.6", "powerlaw:alpha=3",
+                           "weibull:k=0.6,lambda=2", "weibull:k=3"}) {
     const auto d = parse(spec);
     const auto& c = dynamic_cast<const ContinuousDistribution&>(*d);
-    for (double u : {1e-6, 0.1, 0.5, 0.9, 0.999999}) EXPECT_NEAR(c.cdf(c.quantile(u)), u, 1e-12) << spec << " u=" << u;
+    for (double u : {1e-6, 0.1, 0.5, 0.9, 0.999999})
+      EXPECT_NEAR(c.cdf(c.quantile(u)), u, 1e-12) << spec << " u=" << u;
   }
 }
 
 TEST(Distributions, DensityDerivativeMatchesFiniteDifferences) {
-  for (const char* spec : {"powerlaw:alpha=-0.6", "powerlaw:alpha=3", "weibull:k=0.6,lambda=2", "weibull:k=3", "uniform:a=0.2,b=1"}) {
+  for (const char* spec : {"powerlaw:alpha=-0.6", "powerlaw:alpha=3", "weibull:k=0.6,lambda=2", "weibull:k=3",
+                           "uniform:a=0.2,b=1"}) {
     const auto d = parse(spec);
     const auto& c = dynamic_cast<const ContinuousDistribution&>(*d);
     for (double u : {0.1, 0.4, 0.8}) {
       const double x = c.quantile(u), h = 1e-5 * x;
       const double numeric = (c.pdf(x + h) - c.pdf(x - h)) / (2 * h);
-      EXPECT_NEAR(c.pdf_derivative(x), numeric, 1e-6 * (std::abs(numeric) + c.pdf(x) / x)) << spec << " x=" << x;
+      EXPECT_NEAR(c.pdf_derivative(x), numeric, 1e-6 * (std::abs(numeric) + c.pdf(x) / x))
+          << spec << " x=" << x;
       // p = dP/dx as well.
       EXPECT_NEAR(c.pdf(x), (c.cdf(x + h) - c.cdf(x - h)) / (2 * h), 1e-7 * c.pdf(x)) << spec << " x=" << x;
     }

@@ -1,11 +1,11 @@
 // `rupture fbm` end to end: JSON and table output, CSV curves readable as loading curves, the
 // simulate outputs, and bad input rejected with exit code 2 and one line naming the fix.
-#include <fstream>
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "io/csv.hpp"
 #include "support/tool.hpp"
@@ -23,7 +23,8 @@ TEST(FbmCli, TheoryJsonHasEveryKeyAndNullWhereUndefined) {
   const auto r = run_rupture("fbm theory --dist uniform --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"x_c", "F_c", "x_m", "E_max", "x_p", "Erate_max", "delta_x", "Gamma", "A_r", "E_d_at_x_c"})
+  for (const char* key :
+       {"x_c", "F_c", "x_m", "E_max", "x_p", "Erate_max", "delta_x", "Gamma", "A_r", "E_d_at_x_c"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_NEAR(j["x_c"].get<double>(), 0.5, 1e-12);
   EXPECT_NEAR(j["A_r"].get<double>(), 4.0 / 3.0, 1e-12);
@@ -67,7 +68,8 @@ TEST(FbmCli, BadDistributionSpecsExitWithTwoAndOneLine) {
 
 TEST(FbmCli, CurvesAreLoadingCurvesWithUnitsAndBalancedWork) {
   TempDir dir;
-  const auto r = run_rupture("fbm curves --dist weibull:k=2 --points 4001 --out '" + (dir / "c.csv").string() + "'");
+  const auto r =
+      run_rupture("fbm curves --dist weibull:k=2 --points 4001 --out '" + (dir / "c.csv").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto table = io::read_csv(dir / "c.csv");
   ASSERT_EQ(table.rows(), 4001u);
@@ -85,12 +87,13 @@ TEST(FbmCli, CurvesAreLoadingCurvesWithUnitsAndBalancedWork) {
 TEST(FbmCli, SimulateWritesCurveBurstsAndSummary) {
   TempDir dir;
   const auto out = dir / "run.csv";
-  const auto r = run_rupture("fbm simulate --fibers 100000 --seed 5 --control load --points 501 --out '" + out.string() +
-                             "' --json '" + (dir / "run.json").string() + "'");
+  const auto r = run_rupture("fbm simulate --fibers 100000 --seed 5 --control load --points 501 --out '" +
+                             out.string() + "' --json '" + (dir / "run.json").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto curve = io::read_csv(out);
   EXPECT_EQ(curve.rows(), 501u);
-  for (const char* column : {"strain", "force", "elastic_energy", "damage_energy", "energy_rate", "broken_fraction"})
+  for (const char* column :
+       {"strain", "force", "elastic_energy", "damage_energy", "energy_rate", "broken_fraction"})
     EXPECT_TRUE(curve.find(column).has_value()) << column;
   const auto bursts = io::read_csv(dir / "run_bursts.csv");
   EXPECT_EQ(bursts.column("size").front(), 1.0);
