@@ -133,18 +133,31 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
     ++link_start_[bond_j_[b] + 1];
   }
   std::partial_sum(link_start_.begin(), link_start_.end(), link_start_.begin());
-  links_.resize(2 * nb);
+  for (auto* v : {&link_other_, &link_bond_}) v->resize(2 * nb);
+  for (auto* v : {&link_r0_, &link_k_, &link_limit_}) v->resize(2 * nb);
   {
-    std::vector<std::uint32_t> fill(link_start_.begin(), link_start_.end() - 1);
+    // Per particle, links in order of the other particle (a fixed summation order).
+    std::vector<std::vector<std::uint32_t>> bonds_of(n);
     for (std::uint32_t b = 0; b < nb; ++b) {
-      const double limit = params.break_rule == BreakRule::absolute ? params.break_distance
-                                                                    : params.break_distance * bond_r0_[b];
-      links_[fill[bond_i_[b]]++] = {bond_r0_[b], bond_k_[b], limit, bond_j_[b], b};
-      links_[fill[bond_j_[b]]++] = {bond_r0_[b], bond_k_[b], limit, bond_i_[b], b};
+      bonds_of[bond_i_[b]].push_back(b);
+      bonds_of[bond_j_[b]].push_back(b);
     }
-    for (std::size_t a = 0; a < n; ++a)
-      std::sort(links_.begin() + link_start_[a], links_.begin() + link_start_[a + 1],
-                [](const Link& l, const Link& r) { return l.other < r.other; });
+    link_count_.resize(n);
+    for (std::uint32_t a = 0; a < n; ++a) {
+      auto& list = bonds_of[a];
+      const auto other = [&](std::uint32_t b) { return bond_i_[b] == a ? bond_j_[b] : bond_i_[b]; };
+      std::sort(list.begin(), list.end(), [&](std::uint32_t l, std::uint32_t r) { return other(l) < other(r); });
+      link_count_[a] = static_cast<std::uint32_t>(list.size());
+      std::uint32_t l = link_start_[a];
+      for (const std::uint32_t b : list) {
+        link_other_[l] = other(b);
+        link_bond_[l] = b;
+        link_r0_[l] = bond_r0_[b];
+        link_k_[l] = bond_k_[b];
+        link_limit_[l] = params.break_rule == BreakRule::absolute ? params.break_distance : params.break_distance * bond_r0_[b];
+        ++l;
+      }
+    }
   }
 
   // Stability bound (Gershgorin on the mass-weighted stiffness matrix): for particle a,
@@ -153,9 +166,8 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
   for (std::uint32_t a = 0; a < n; ++a) {
     double lambda = 0.0, spring_sum = 0.0;
     for (std::uint32_t l = link_start_[a]; l < link_start_[a + 1]; ++l) {
-      const Link& link = links_[l];
-      lambda += link.k * (inv_mass_[a] + 1.0 / std::sqrt(mass_[a] * mass_[link.other]));
-      spring_sum += link.k;
+      lambda += link_k_[l] * (inv_mass_[a] + 1.0 / std::sqrt(mass_[a] * mass_[link_other_[l]]));
+      spring_sum += link_k_[l];
     }
     if (plate_[a] != plate_none && params.glue_mode == GlueMode::spring) {
       lambda += params.glue_stiffness * inv_mass_[a];
@@ -182,13 +194,15 @@ std::size_t System::memory_bytes() const {
   for (const auto* v : {&storage_of_sample_, &sample_of_storage_, &glued_, &bond_i_, &bond_j_, &link_start_,
                         &nb_start_, &nb_count_, &nb_, &cell_start_, &cell_particles_, &flagged_merged_})
     bytes += v->capacity() * sizeof(std::uint32_t);
-  bytes += plate_.capacity() + intact_.capacity() + links_.capacity() * sizeof(Link);
+  for (const auto* v : {&link_count_, &link_other_, &link_bond_}) bytes += v->capacity() * sizeof(std::uint32_t);
+  for (const auto* v : {&link_r0_, &link_k_, &link_limit_}) bytes += v->capacity() * sizeof(double);
+  bytes += plate_.capacity() + intact_.capacity();
   return bytes;
 }
 
 bool System::bonded_intact(std::uint32_t a, std::uint32_t b) const {
-  for (std::uint32_t l = link_start_[a]; l < link_start_[a + 1]; ++l)
-    if (links_[l].other == b) return intact_[links_[l].bond] != 0;
+  for (std::uint32_t l = link_start_[a]; l < link_start_[a] + link_count_[a]; ++l)
+    if (link_other_[l] == b) return true;
   return false;
 }
 
@@ -254,9 +268,7 @@ void System::rebuild_neighbours() {
   for (std::uint32_t a = 0; a < n; ++a) {
     std::uint32_t count = 0;
     visit(a, [&](std::uint32_t) { ++count; });
-    std::uint32_t bonds = 0;
-    for (std::uint32_t l = link_start_[a]; l < link_start_[a + 1]; ++l) bonds += intact_[links_[l].bond];
-    capacity[a] = count + bonds;
+    capacity[a] = count + link_count_[a];
   }
   nb_start_[0] = 0;
   for (std::uint32_t a = 0; a < n; ++a) nb_start_[a + 1] = nb_start_[a] + capacity[a];
@@ -304,8 +316,12 @@ void System::compute_forces_impl(double half_dt) {
   const double* __restrict y = y_.data();
   const double* __restrict z = z_.data();
   const double* __restrict rad = radius_.data();
-  const Link* __restrict links = links_.data();
+  const std::uint32_t* __restrict link_other = link_other_.data();
+  const double* __restrict link_r0 = link_r0_.data();
+  const double* __restrict link_k = link_k_.data();
+  const double* __restrict link_limit = link_limit_.data();
   const std::uint32_t* __restrict link_start = link_start_.data();
+  const std::uint32_t* __restrict link_count = link_count_.data();
   const std::uint32_t* __restrict nb = nb_.data();
 #pragma omp parallel if (parallel_)
   {
@@ -314,31 +330,40 @@ void System::compute_forces_impl(double half_dt) {
     for (std::uint32_t a = 0; a < n; ++a) {
       const double xa = x[a], ya = y[a], za = z[a];
       double fx = 0.0, fy = 0.0, fz = 0.0;
-      for (std::uint32_t l = link_start[a]; l < link_start[a + 1]; ++l) {
-        const Link& link = links[l];
-        const double dx = x[link.other] - xa, dy = y[link.other] - ya, dz = z[link.other] - za;
+      const std::uint32_t begin = link_start[a], end = begin + link_count[a];
+      int over = 0;
+      // Branch-free so that it vectorises; a bond over its limit gives no force and is flagged below.
+#pragma omp simd reduction(+ : fx, fy, fz) reduction(| : over)
+      for (std::uint32_t l = begin; l < end; ++l) {
+        const std::uint32_t j = link_other[l];
+        const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double s = r - link.r0;
-        const bool holds = s <= link.limit;
-        const double c = holds ? link.k * s / r : 0.0;
+        const double s = r - link_r0[l];
+        const bool holds = s <= link_limit[l];
+        const double c = holds ? link_k[l] * s / r : 0.0;
         fx += c * dx;
         fy += c * dy;
         fz += c * dz;
-        if (!holds && link.other > a) [[unlikely]] flags.push_back(link.bond);
+        over |= int(!holds);
+      }
+      if (over) [[unlikely]] {
+        for (std::uint32_t l = begin; l < end; ++l) {
+          const std::uint32_t j = link_other[l];
+          const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
+          if (j > a && std::sqrt(dx * dx + dy * dy + dz * dz) - link_r0[l] > link_limit[l]) flags.push_back(link_bond_[l]);
+        }
       }
       const double ra = rad[a];
-      for (std::uint32_t p = nb_start_[a], end = nb_start_[a] + nb_count_[a]; p < end; ++p) {
+#pragma omp simd reduction(+ : fx, fy, fz)
+      for (std::uint32_t p = nb_start_[a]; p < nb_start_[a] + nb_count_[a]; ++p) {
         const std::uint32_t b = nb[p];
         const double dx = x[b] - xa, dy = y[b] - ya, dz = z[b] - za;
-        const double r2 = dx * dx + dy * dy + dz * dz;
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
         const double touch = ra + rad[b];
-        if (r2 < touch * touch) {
-          const double r = std::sqrt(r2);
-          const double c = -kc * (touch - r) / r;
-          fx += c * dx;
-          fy += c * dy;
-          fz += c * dz;
-        }
+        const double c = r < touch ? -kc * (touch - r) / r : 0.0;
+        fx += c * dx;
+        fy += c * dy;
+        fz += c * dz;
       }
       const std::uint8_t plate = plate_[a];
       if (plate != plate_none) {
@@ -462,12 +487,20 @@ void System::break_one(std::uint32_t b) {
   const double energy = bond.energy(r_break) - contact.energy(r);
   intact_[b] = 0;
   --intact_count_;
-  for (const std::uint32_t from : {i, j})
-    for (std::uint32_t l = link_start_[from]; l < link_start_[from + 1]; ++l)
-      if (links_[l].bond == b) {
-        links_[l].k = 0.0;
-        links_[l].limit = std::numeric_limits<double>::infinity();
+  // Swap the link with the particle's last intact one and shrink the intact range.
+  for (const std::uint32_t from : {i, j}) {
+    const std::uint32_t last = link_start_[from] + link_count_[from] - 1;
+    for (std::uint32_t l = link_start_[from]; l <= last; ++l)
+      if (link_bond_[l] == b) {
+        std::swap(link_other_[l], link_other_[last]);
+        std::swap(link_bond_[l], link_bond_[last]);
+        std::swap(link_r0_[l], link_r0_[last]);
+        std::swap(link_k_[l], link_k_[last]);
+        std::swap(link_limit_[l], link_limit_[last]);
+        --link_count_[from];
+        break;
       }
+  }
   add_neighbour(i, j);
   add_neighbour(j, i);
   released_ += energy;
@@ -520,11 +553,11 @@ Energies System::energies() const {
   for (std::uint32_t a = 0; a < n; ++a) {
     double elastic = 0.0, contact = 0.0;
     std::uint32_t count = 0;
-    for (std::uint32_t l = link_start_[a]; l < link_start_[a + 1]; ++l) {
-      const Link& link = links_[l];
-      if (link.other < a || !intact_[link.bond]) continue;
-      const double dx = x_[link.other] - x_[a], dy = y_[link.other] - y_[a], dz = z_[link.other] - z_[a];
-      elastic += HookeBond{link.k, link.r0}.energy(std::sqrt(dx * dx + dy * dy + dz * dz));
+    for (std::uint32_t l = link_start_[a]; l < link_start_[a] + link_count_[a]; ++l) {
+      const std::uint32_t b = link_other_[l];
+      if (b < a) continue;
+      const double dx = x_[b] - x_[a], dy = y_[b] - y_[a], dz = z_[b] - z_[a];
+      elastic += HookeBond{link_k_[l], link_r0_[l]}.energy(std::sqrt(dx * dx + dy * dy + dz * dz));
     }
     for (std::uint32_t p = nb_start_[a]; p < nb_start_[a] + nb_count_[a]; ++p) {
       const std::uint32_t b = nb_[p];

@@ -141,16 +141,6 @@ class System {
   std::size_t memory_bytes() const;
 
  private:
-  // One bond seen from one of its ends: the other particle and the bond's constants. A broken bond
-  // keeps its link with k = 0 and an infinite limit, so the hot loop has no branch on the flag.
-  struct Link {
-    double r0;     // mm
-    double k;      // N/mm (0 once broken)
-    double limit;  // mm: the stretch above which it breaks
-    std::uint32_t other;
-    std::uint32_t bond;
-  };
-
   void compute_forces(double half_dt);
   template <bool damped>
   void compute_forces_impl(double half_dt);
@@ -174,12 +164,16 @@ class System {
   std::vector<std::uint32_t> storage_of_sample_, sample_of_storage_;
   std::vector<std::uint32_t> glued_;          // storage indices of glued particles, ascending
 
-  // Bonds in sample order (storage indices), and per-particle links (CSR).
+  // Bonds in sample order (storage indices), and per-particle links (CSR): each bond seen from
+  // both ends, as arrays the force loop reads with SIMD. A particle's intact links occupy
+  // [link_start_[a], link_start_[a] + link_count_[a]); a break moves its link past the end, so
+  // broken bonds cost nothing.
   std::vector<std::uint32_t> bond_i_, bond_j_;
   std::vector<double> bond_r0_, bond_k_;
   std::vector<std::uint8_t> intact_;
-  std::vector<std::uint32_t> link_start_;
-  std::vector<Link> links_;
+  std::vector<std::uint32_t> link_start_, link_count_;
+  std::vector<std::uint32_t> link_other_, link_bond_;
+  std::vector<double> link_r0_, link_k_, link_limit_;  // mm, N/mm, mm
   std::size_t intact_count_ = 0;
 
   // Contact neighbour list: per particle a slice [start, start + count) with room for the pairs
