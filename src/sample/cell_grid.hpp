@@ -51,7 +51,8 @@ class CellGrid {
     const std::array<double, 3> rel{p.x - lower_.x, p.y - lower_.y, p.z - lower_.z};
     std::array<int, 3> c{};
     for (int a = 0; a < 3; ++a)
-      c[a] = std::clamp(static_cast<int>(std::floor(rel[a] * inverse_width_[a])), 0, dims_[a] - 1);
+      // Clamp before converting: a far-away (imported) particle must not overflow the int.
+      c[a] = static_cast<int>(std::clamp(std::floor(rel[a] * inverse_width_[a]), 0.0, dims_[a] - 1.0));
     return c;
   }
 

@@ -25,7 +25,7 @@ bool starts_with_letter(std::string_view line) {
 
 // Column positions of one LAMMPS atom style.
 struct AtomLayout {
-  int id = 0, type = 1, x = 2, diameter = -1, density = -1;
+  int id = 0, type = 1, x = 2, diameter = -1, density = -1, molecule = -1;  // -1: no such column
   std::size_t columns = 0;
 };
 
@@ -35,9 +35,12 @@ AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>
   if (style.empty())
     in.fail("the Atoms section does not name its atom style",
             "write it as a comment: 'Atoms # hybrid sphere bond'");
+  // LAMMPS's own write_data names a hybrid style without its sub-styles ("Atoms # hybrid"); take
+  // the order rupture writes, `sphere bond`, which the column count and types then check.
+  if (style.size() == 1 && style[0] == "hybrid") return atom_layout(in, {"hybrid", "sphere", "bond"});
   AtomLayout layout;
-  if (style[0] == "bpm/sphere") return {0, 2, 5, 3, 4, 8};
-  if (style[0] == "sphere") return {0, 1, 4, 2, 3, 7};
+  if (style[0] == "bpm/sphere") return {0, 2, 5, 3, 4, 1, 8};
+  if (style[0] == "sphere") return {0, 1, 4, 2, 3, -1, 7};
   if (style[0] != "hybrid")
     in.fail(fmt::format("atom style '{}' has no particle radius", style[0]), supported);
   int column = 5;  // id type x y z, then each sub-style's own columns in order
@@ -48,10 +51,12 @@ AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>
       layout.density = column + 1;
       column += 2;
     } else if (sub == "bond" || sub == "angle" || sub == "molecular") {
-      column += 1;  // molecule-ID
+      layout.molecule = column;
+      column += 1;
     } else if (sub == "charge") {
       column += 1;  // q
     } else if (sub == "full") {
+      layout.molecule = column;
       column += 2;  // molecule-ID q
     } else {
       in.fail(fmt::format("hybrid sub-style '{}' is not supported", sub), supported);
@@ -183,6 +188,8 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
           in.fail(fmt::format("atom {} has diameter {}", atom_id, diameter),
                   "give every atom a diameter > 0");
         const double density = in.real(column(layout.density), "density");
+        // An integer molecule-ID where the layout expects one confirms the column order.
+        if (layout.molecule >= 0) in.integer(column(layout.molecule), "molecule-ID");
         const auto type = in.integer(column(layout.type), "atom-type");
         ParticleGroup group = ParticleGroup::free;
         if (written_by_rupture) {

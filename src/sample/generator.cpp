@@ -70,7 +70,8 @@ void validate(const PackingParams& p) {
     throw InputError("--width/--height/--depth",
                      fmt::format("box {} x {} x {} mm is not a box", p.size.x, p.size.y, p.size.z),
                      "give three positive sizes in mm");
-  TruncatedLogNormal(p.r_min, p.r_max, p.r_median, p.r_sigma);  // validates the radii
+  [[maybe_unused]] const TruncatedLogNormal radii(p.r_min, p.r_max, p.r_median,
+                                                  p.r_sigma);  // checks the radii
   const double smallest_side = std::min({p.size.x, p.size.y, p.size.z});
   if (2.0 * p.r_max > smallest_side)
     throw InputError("--r-max",

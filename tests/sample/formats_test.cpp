@@ -95,6 +95,20 @@ TEST(LammpsData, ReadsAFileWrittenByLammps) {
   EXPECT_DOUBLE_EQ(s.bonds[0].rest_length, 1.5);
 }
 
+// LAMMPS's write_data names hybrid styles without their sub-styles; the order rupture writes is
+// assumed and checked through the molecule-ID column.
+TEST(LammpsData, BareHybridStyleIsReadAsSphereBond) {
+  const std::string head =
+      "LAMMPS data file via write_data\n\n1 atoms\n0 4 xlo xhi\n0 4 ylo yhi\n0 2 zlo zhi\n\n";
+  const Sample s =
+      parse_lammps_data(head + "Atoms # hybrid\n\n1 1 1.0 0.5 1.0 1.0 0.002 1 0 0 0\n", "h.data");
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s.radius[0], 0.5);
+  EXPECT_EQ(s.density, 0.002);
+  EXPECT_THAT([&] { parse_lammps_data(head + "Atoms # hybrid\n\n1 1 1.0 0.5 1.0 7 1.0 0.002\n", "h.data"); },
+              ThrowsMessage<InputError>(HasSubstr("h.data:10: molecule-ID '0.002' is not an integer")));
+}
+
 TEST(LsmGeometry, ReadsAGenGeoFile) {
   const std::string text =
       "LSMGeometry 1.2\nBoundingBox 0 0 0 4 4 2\nPeriodicBoundaries 0 0 0\nDimension 3D\n"
