@@ -184,7 +184,9 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
     double length = 7.0;
     if (r.filter.kind == FilterKind::butterworth) length = 0.5 / r.filter.cutoff;
     if (r.filter.kind == FilterKind::savitzky_golay) length = r.filter.savgol_window;
-    window = odd_at_least(std::clamp(static_cast<int>(std::lround(length)), 7, std::max(7, static_cast<int>(n / 4))));
+    // At most 101 samples: after the low-pass the curve is smooth on that scale already, and the
+    // cost of the derivative grows with its window.
+    window = odd_at_least(std::clamp(static_cast<int>(std::lround(length)), 7, std::clamp(static_cast<int>(n / 4), 7, 101)));
   }
   r.derivative_window = odd_at_least(window);
   r.energy_rate = savgol_filter(r.filtered_energy, r.derivative_window, 3, 1, grid.step);

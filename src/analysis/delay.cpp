@@ -34,6 +34,49 @@ double weighted_median(std::vector<std::pair<double, double>>& items) {
   return first->first;
 }
 
+// The exact weighted median, found quickly when a guess is close: one pass sums the weight below a
+// band around the guess and collects the items inside it; if the median falls in the band only the
+// band is sorted, otherwise the full selection runs. The answer never depends on the guess.
+class WeightedMedian {
+ public:
+  double operator()(std::vector<std::pair<double, double>>& items) {
+    double total = 0.0;
+    for (const auto& item : items) total += item.second;
+    if (have_guess_) {
+      const double low = guess_ - band_, high = guess_ + band_;
+      double below = 0.0;
+      band_items_.clear();
+      for (const auto& item : items) {
+        if (item.first < low) below += item.second;
+        else if (item.first <= high) band_items_.push_back(item);
+      }
+      double inside = 0.0;
+      for (const auto& item : band_items_) inside += item.second;
+      if (below < 0.5 * total && below + inside >= 0.5 * total) {
+        std::sort(band_items_.begin(), band_items_.end());
+        double cumulative = below;
+        for (const auto& item : band_items_) {
+          cumulative += item.second;
+          if (cumulative >= 0.5 * total) return remember(item.first);
+        }
+      }
+    }
+    return remember(weighted_median(items));
+  }
+
+ private:
+  double remember(double value) {
+    // The next δ's median is usually within a few times the last change.
+    band_ = have_guess_ ? std::max(4.0 * std::abs(value - guess_), 1e-9 * std::abs(value)) : 1e-3 * std::abs(value);
+    guess_ = value;
+    have_guess_ = true;
+    return value;
+  }
+  bool have_guess_ = false;
+  double guess_ = 0.0, band_ = 0.0;
+  std::vector<std::pair<double, double>> band_items_;
+};
+
 class Misfit {
  public:
   Misfit(std::span<const double> force, std::span<const double> rate, double step, std::size_t low, std::size_t high)
@@ -43,18 +86,22 @@ class Misfit {
 
   // Σ|F_i − c ℰ(x_i − δ)| with the l1-optimal c; `scale` receives c.
   double operator()(double delta, double& scale) {
+    // x_i − δ falls between samples j = i − k − 1 and j + 1 at the same fraction t for every i.
     const double shift = delta / step_;
+    const double whole = std::ceil(shift);
+    const double t = whole - shift;  // in [0, 1)
+    const auto k = static_cast<std::ptrdiff_t>(whole);
     items_.clear();
     shifted_.resize(high_ - low_ + 1);
     for (std::size_t i = low_; i <= high_; ++i) {
-      const double u = static_cast<double>(i) - shift;
-      const auto j = std::min(static_cast<std::size_t>(std::max(0.0, std::floor(u))), rate_.size() - 2);
-      const double t = u - static_cast<double>(j);
-      const double r = rate_[j] + t * (rate_[j + 1] - rate_[j]);
+      const auto j = std::clamp<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(i) - k, 0,
+                                                static_cast<std::ptrdiff_t>(rate_.size()) - 2);
+      const auto ju = static_cast<std::size_t>(j);
+      const double r = rate_[ju] + t * (rate_[ju + 1] - rate_[ju]);
       shifted_[i - low_] = r;
       if (r != 0.0) items_.emplace_back(force_[i] / r, std::abs(r));
     }
-    scale = items_.empty() ? 0.0 : weighted_median(items_);
+    scale = items_.empty() ? 0.0 : median_(items_);
     double sum = 0.0;
     for (std::size_t i = low_; i <= high_; ++i) sum += std::abs(force_[i] - scale * shifted_[i - low_]);
     return sum;
@@ -66,6 +113,7 @@ class Misfit {
   std::size_t low_, high_;
   std::vector<std::pair<double, double>> items_;
   std::vector<double> shifted_;
+  WeightedMedian median_;
 };
 
 double quantile(const std::vector<double>& grid, const std::vector<double>& cdf, double p) {
@@ -118,32 +166,43 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   post.prior_low = std::max(post.prior_low, post.window_high - x_end);
   post.prior_high = std::min(post.prior_high, post.window_low - x0);
 
-  Misfit misfit(force_raw, energy_rate, step, low, high);
   std::vector<double> grid, log_density;
+  // Grid points are independent: each thread has its own Misfit buffers, and every value is
+  // computed the same way whatever the thread count.
   const auto evaluate = [&](double a, double b, std::size_t points) {
     grid.resize(points);
     log_density.resize(points);
-    for (std::size_t k = 0; k < points; ++k) {
-      grid[k] = a + (b - a) * static_cast<double>(k) / static_cast<double>(points - 1);
-      double scale;
-      log_density[k] = -misfit(grid[k], scale) / temperature;
+    for (std::size_t k = 0; k < points; ++k) grid[k] = a + (b - a) * static_cast<double>(k) / static_cast<double>(points - 1);
+#pragma omp parallel
+    {
+      Misfit misfit(force_raw, energy_rate, step, low, high);
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(points); ++k) {
+        double scale;
+        log_density[static_cast<std::size_t>(k)] = -misfit(grid[static_cast<std::size_t>(k)], scale) / temperature;
+      }
     }
   };
-  // Coarse scan of the whole prior, then zoom onto the region holding the posterior mass
-  // (log density within 30 of the maximum) until it spans enough grid points to be resolved.
-  evaluate(post.prior_low, post.prior_high, 401);
-  for (int zoom = 0; zoom < 8; ++zoom) {
+  // Coarse scan of the whole prior, then zoom (401-point grids) onto the region holding the
+  // posterior mass (log density within 30 of the maximum) until it spans at least 40 grid
+  // points; then the final grid of grid_points over that region.
+  constexpr std::size_t coarse = 401;
+  evaluate(post.prior_low, post.prior_high, coarse);
+  for (int zoom = 0; zoom < 12; ++zoom) {
     const double top = *std::max_element(log_density.begin(), log_density.end());
     std::size_t first = 0, last = grid.size() - 1;
     while (log_density[first] < top - 30.0) ++first;
     while (log_density[last] < top - 30.0) --last;
-    const bool final_grid = grid.size() == options.grid_points;
-    if (final_grid && last - first >= 200) break;
     const double a = grid[first > 0 ? first - 1 : 0];
     const double b = grid[std::min(last + 1, grid.size() - 1)];
-    if (final_grid && (b - a) < 1e-13 * (post.prior_high - post.prior_low)) break;
-    evaluate(a, b, options.grid_points);
+    const bool resolved = last - first >= 40 || (b - a) < 1e-13 * (post.prior_high - post.prior_low);
+    if (resolved || zoom == 11) {
+      evaluate(a, b, options.grid_points);
+      break;
+    }
+    evaluate(a, b, coarse);
   }
+  Misfit misfit(force_raw, energy_rate, step, low, high);
   // Normalise (trapezoid rule), then the summaries.
   const double top = *std::max_element(log_density.begin(), log_density.end());
   post.delta = grid;

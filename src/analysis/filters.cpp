@@ -70,9 +70,10 @@ double choose_strength(const FilterSettings& base, std::span<const double> y) {
     }
     return mild;
   }
-  // Savitzky–Golay windows from the smallest useful one up to a quarter of the curve.
+  // Savitzky–Golay windows from the smallest useful one up to a quarter of the curve, at most
+  // max_auto_savgol_window (the cost is samples x window per trial).
   int mild = odd_at_least(base.savgol_order + 2);
-  int strong = std::max(mild, odd_at_least(static_cast<int>(n / 4) - 1));
+  int strong = std::max(mild, std::min(max_auto_savgol_window, odd_at_least(static_cast<int>(n / 4) - 1)));
   if (acceptable(strong)) return strong;
   if (!acceptable(mild)) return mild;
   while (strong - mild > 2) {
@@ -228,12 +229,17 @@ double correlation_length(std::span<const double> residual) {
   const double mean = std::accumulate(residual.begin(), residual.end(), 0.0) / static_cast<double>(n);
   double variance = 0.0;
   for (double r : residual) variance += (r - mean) * (r - mean);
+  variance /= static_cast<double>(n);
   if (variance <= 0.0) return 1.0;
+  // Long curves: each lag's sum runs over every stride-th sample (at most 10^5 terms) and at most
+  // 1000 lags are summed, so the cost stays ~10^8 operations for any length.
+  const std::size_t stride = std::max<std::size_t>(1, n / 100000);
   double length = 1.0;
-  for (std::size_t lag = 1; lag <= n / 10; ++lag) {
+  for (std::size_t lag = 1; lag <= std::min<std::size_t>(n / 10, 1000); ++lag) {
     double sum = 0.0;
-    for (std::size_t i = 0; i + lag < n; ++i) sum += (residual[i] - mean) * (residual[i + lag] - mean);
-    const double rho = sum / variance;
+    std::size_t terms = 0;
+    for (std::size_t i = 0; i + lag < n; i += stride, ++terms) sum += (residual[i] - mean) * (residual[i + lag] - mean);
+    const double rho = sum / (static_cast<double>(terms) * variance);
     if (rho <= 0.05) break;
     length += 2.0 * rho;
   }

@@ -51,12 +51,15 @@ double noise_from_differences(std::span<const double> y);
 double robust_scale(std::span<const double> residual);
 
 // Integrated autocorrelation length of a residual, 1 + 2 sum_k rho_k summed while rho_k > 0.05
-// (at most n/10 lags), at least 1: the number of consecutive samples that carry one independent
+// (at most min(n/10, 1000) lags), at least 1: the number of consecutive samples that carry one independent
 // sample's worth of information. Used to keep likelihoods and fit errors honest on oversampled data.
 double correlation_length(std::span<const double> residual);
 
 // --- the configurable smoothing stage ----------------------------------------------------------
 enum class FilterKind { butterworth, savitzky_golay, none };
+
+// Largest Savitzky–Golay smoothing window the automatic choice tries (samples).
+inline constexpr int max_auto_savgol_window = 501;
 
 struct FilterSettings {
   FilterKind kind = FilterKind::butterworth;
