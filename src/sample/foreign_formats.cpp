@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 #include "core/units.hpp"
 #include "rupture/version.hpp"
@@ -65,6 +66,35 @@ AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>
   if (layout.diameter < 0) in.fail("the hybrid atom style has no 'sphere' part, so no radius", supported);
   layout.columns = static_cast<std::size_t>(column);
   return layout;
+}
+
+// GenGeo writes the bounding box of its neighbour table, which is rounded up to whole grid cells, not
+// the box it packed against. A face that no particle comes within one smallest radius of is therefore
+// not a wall of the packing: it is moved to the particles' extent. Faces the packing touches (every
+// face of a generated sample) stay exactly as written. Returns whether a face moved.
+bool fit_box_to_particles(Sample& sample) {
+  if (sample.size() == 0) return false;
+  const double r_min = default_glue_depth(sample);
+  std::array<double, 3> low{}, high{};
+  for (int a = 0; a < 3; ++a)
+    low[a] = std::numeric_limits<double>::max(), high[a] = std::numeric_limits<double>::lowest();
+  for (std::size_t k = 0; k < sample.size(); ++k) {
+    const Vec3& p = sample.position[k];
+    const std::array<double, 3> c{p.x, p.y, p.z};
+    for (int a = 0; a < 3; ++a) {
+      low[a] = std::min(low[a], c[a] - sample.radius[k]);
+      high[a] = std::max(high[a], c[a] + sample.radius[k]);
+    }
+  }
+  bool moved = false;
+  const auto fit = [&](double& lower, double& upper, int a) {
+    if (low[a] - lower > r_min) lower = low[a], moved = true;
+    if (upper - high[a] > r_min) upper = high[a], moved = true;
+  };
+  fit(sample.box.lower.x, sample.box.upper.x, 0);
+  fit(sample.box.lower.y, sample.box.upper.y, 1);
+  fit(sample.box.lower.z, sample.box.upper.z, 2);
+  return moved;
 }
 }  // namespace
 
@@ -314,8 +344,11 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   if (!(box.upper.x > box.lower.x && box.upper.y > box.lower.y && box.upper.z > box.lower.z))
     throw InputError(source, "no valid BoundingBox line", "add 'BoundingBox xmin ymin zmin xmax ymax zmax'");
   Sample sample = build.finish();
-  assign_glued_layers(sample);
   sample.provenance.push_back(fmt::format("imported from LSMGeometry file {}", source));
+  if (fit_box_to_particles(sample))
+    sample.provenance.push_back(
+        "box: BoundingBox faces that no particle comes near moved to the particles' extent");
+  assign_glued_layers(sample);
   return sample;
 }
 

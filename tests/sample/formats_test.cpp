@@ -119,7 +119,14 @@ TEST(LsmGeometry, ReadsAGenGeoFile) {
   EXPECT_EQ(s.id, (std::vector<std::int64_t>{10, 11}));
   ASSERT_EQ(s.bonds.size(), 1u);
   EXPECT_DOUBLE_EQ(s.bonds[0].rest_length, 1.0);
+  // GenGeo writes its grid's bounding box: faces no particle comes within r_min of move to the
+  // particles' extent, so the top layer exists; faces the packing touches stay as written.
+  EXPECT_EQ(s.box.upper.y, 2.0);
+  EXPECT_EQ(s.box.upper.x, 1.5);
+  EXPECT_EQ(s.box.upper.z, 2.0);  // a gap of exactly r_min still counts as a wall
+  EXPECT_EQ(s.box.lower.x, 0.0);
   EXPECT_EQ(s.group[0], ParticleGroup::bottom);
+  EXPECT_EQ(s.group[1], ParticleGroup::top);
 }
 
 TEST(OwnFormat, TruncatedFileIsRejectedNamingTheLine) {
