@@ -1,15 +1,15 @@
 // cli/bench_command: `rupture bench`, whole DEM steps timed on a named sample (intact and with a
 // fraction of its bonds broken) for each thread count: particle-steps per second, the split over
 // the step's stages, bytes per particle and the state hash (equal for every thread count).
+#include <fmt/format.h>
+#include <omp.h>
+
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-#include <omp.h>
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
@@ -59,11 +59,13 @@ Sample bench_sample(const BenchOptions& options) {
 
 // Steps the sample as a run would (default physics, automatic dt, plate at 50 mm/s) with bonds
 // broken beforehand in a seeded random selection, so every thread count sees the same state.
-BenchResult bench_case(const Sample& sample, const BenchOptions& options, int threads, double broken_fraction) {
+BenchResult bench_case(const Sample& sample, const BenchOptions& options, int threads,
+                       double broken_fraction) {
   omp_set_num_threads(threads);
   dem::System system(sample, dem::Params{});
   for (std::size_t b = 0; b < system.bond_count(); ++b)
-    if (Rng(options.seed, RandomStream::dem_bond_order, b).uniform01() < broken_fraction) system.break_bond(b);
+    if (Rng(options.seed, RandomStream::dem_bond_order, b).uniform01() < broken_fraction)
+      system.break_bond(b);
   system.break_events().clear();
   const double dt = 0.4 * system.critical_dt();
   const loading::SpeedRamp plate{50.0, 0.0};
@@ -84,8 +86,8 @@ BenchResult bench_case(const Sample& sample, const BenchOptions& options, int th
   r.broken = system.bond_count() - system.intact_bonds();
   r.steps = options.steps;
   const dem::StageTimes& after = system.stage_times();
-  r.stages = {after.neighbours - before.neighbours, after.integrate - before.integrate, after.forces - before.forces,
-              after.plates - before.plates, after.breaks - before.breaks};
+  r.stages = {after.neighbours - before.neighbours, after.integrate - before.integrate,
+              after.forces - before.forces, after.plates - before.plates, after.breaks - before.breaks};
   r.rebuilds = system.neighbour_rebuilds() - rebuilds_before;
   r.memory_bytes = system.memory_bytes();
   r.hash = system.state_hash();
@@ -103,8 +105,11 @@ nlohmann::json to_json(const BenchResult& r, const std::string& sample) {
           {"cpu_s", r.cpu_s},
           {"particle_steps_per_s", r.rate()},
           {"stage_seconds",
-           {{"neighbours", r.stages.neighbours}, {"integrate", r.stages.integrate}, {"forces", r.stages.forces},
-            {"plates", r.stages.plates}, {"breaks", r.stages.breaks}}},
+           {{"neighbours", r.stages.neighbours},
+            {"integrate", r.stages.integrate},
+            {"forces", r.stages.forces},
+            {"plates", r.stages.plates},
+            {"breaks", r.stages.breaks}}},
           {"neighbour_rebuilds", r.rebuilds},
           {"bytes_per_particle", double(r.memory_bytes) / double(r.particles)},
           {"state_hash", fmt::format("{:016x}", r.hash)}};
@@ -114,36 +119,51 @@ nlohmann::json to_json(const BenchResult& r, const std::string& sample) {
 
 void add_bench_command(CLI::App& app, int&) {
   auto options = std::make_shared<BenchOptions>();
-  auto* bench = app.add_subcommand("bench", "time whole DEM steps: particle-steps per second per thread count");
-  bench->add_option("--sample", options->sample, "preset name (tissue, tissue-small) or sample file")->capture_default_str();
-  bench->add_option("--threads", options->threads, "thread counts to time (repeatable)")->capture_default_str();
-  bench->add_option("--broken", options->broken, "fractions of bonds broken beforehand (repeatable)")->capture_default_str();
-  bench->add_option("--steps", options->steps, "timed steps per case")->check(CLI::PositiveNumber)->capture_default_str();
+  auto* bench =
+      app.add_subcommand("bench", "time whole DEM steps: particle-steps per second per thread count");
+  bench->add_option("--sample", options->sample, "preset name (tissue, tissue-small) or sample file")
+      ->capture_default_str();
+  bench->add_option("--threads", options->threads, "thread counts to time (repeatable)")
+      ->capture_default_str();
+  bench->add_option("--broken", options->broken, "fractions of bonds broken beforehand (repeatable)")
+      ->capture_default_str();
+  bench->add_option("--steps", options->steps, "timed steps per case")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   bench->add_option("--seed", options->seed, "preset seed and broken-bond selection")->capture_default_str();
   bench->add_flag("--json", options->json, "print JSON instead of a table");
   bench->callback([options] {
     for (int t : options->threads)
       if (t < 1) throw InputError("--threads", fmt::format("{} is not a thread count", t), "use 1 or more");
     for (double f : options->broken)
-      if (!(f >= 0.0 && f < 1.0)) throw InputError("--broken", fmt::format("{} is not a fraction in [0, 1)", f), "use e.g. 0.5");
+      if (!(f >= 0.0 && f < 1.0))
+        throw InputError("--broken", fmt::format("{} is not a fraction in [0, 1)", f), "use e.g. 0.5");
     const Sample sample = bench_sample(*options);
     nlohmann::json results = nlohmann::json::array();
     if (!options->json)
-      fmt::print("rupture {} bench: sample {} ({} particles, {} bonds), {} steps per case\n"
-                 "{:>8} {:>7} {:>9} {:>8} {:>12} {:>10} {:>7} {:>7} {:>7} {:>8} {:>16}\n",
-                 version_string, options->sample, sample.size(), sample.bonds.size(), options->steps, "broken", "threads",
-                 "wall[s]", "cpu[s]", "p-steps/s", "ns/p-step", "forces", "integr", "neighb", "rebuilds", "state hash");
+      fmt::print(
+          "rupture {} bench: sample {} ({} particles, {} bonds), {} steps per case\n"
+          "{:>8} {:>7} {:>9} {:>8} {:>12} {:>10} {:>7} {:>7} {:>7} {:>8} {:>16}\n",
+          version_string, options->sample, sample.size(), sample.bonds.size(), options->steps, "broken",
+          "threads", "wall[s]", "cpu[s]", "p-steps/s", "ns/p-step", "forces", "integr", "neighb", "rebuilds",
+          "state hash");
     for (double fraction : options->broken)
       for (int threads : options->threads) {
         const BenchResult r = bench_case(sample, *options, threads, fraction);
         results.push_back(to_json(r, options->sample));
         if (!options->json)
-          fmt::print("{:>8} {:>7} {:>9.3f} {:>8.3f} {:>12.4g} {:>10.2f} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} {:>16x}\n",
-                     r.broken, threads, r.wall_s, r.cpu_s, r.rate(), 1e9 / r.rate(), 100 * r.stages.forces / r.wall_s,
-                     100 * r.stages.integrate / r.wall_s, 100 * r.stages.neighbours / r.wall_s, r.rebuilds, r.hash);
+          fmt::print(
+              "{:>8} {:>7} {:>9.3f} {:>8.3f} {:>12.4g} {:>10.2f} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} "
+              "{:>16x}\n",
+              r.broken, threads, r.wall_s, r.cpu_s, r.rate(), 1e9 / r.rate(),
+              100 * r.stages.forces / r.wall_s, 100 * r.stages.integrate / r.wall_s,
+              100 * r.stages.neighbours / r.wall_s, r.rebuilds, r.hash);
       }
     if (options->json)
-      fmt::print("{}\n", nlohmann::json{{"tool", "rupture bench"}, {"version", version_string}, {"results", results}}.dump(2));
+      fmt::print(
+          "{}\n",
+          nlohmann::json{{"tool", "rupture bench"}, {"version", version_string}, {"results", results}}.dump(
+              2));
     else
       fmt::print("bytes per particle (engine arrays, bonds included): {:.0f}\n",
                  results.back()["bytes_per_particle"].get<double>());

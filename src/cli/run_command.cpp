@@ -1,12 +1,12 @@
 // cli/run_command: `rupture run CONFIG.toml` (the DEM tension test) and `rupture check CONFIG.toml`
 // (the resolved config, dt with its inputs, speed ratio, estimates and warnings, without stepping).
 // Owns option parsing and terminal text; the run itself is loading/run.
+#include <fmt/format.h>
+
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
@@ -32,7 +32,9 @@ void add_config_options(CLI::App& command, RunOptions& options) {
 }
 
 loading::RunConfig load(const RunOptions& options) {
-  if (options.config.empty()) throw InputError("rupture run", "no config file given", "run `rupture run CONFIG.toml` (see --help-config)");
+  if (options.config.empty())
+    throw InputError("rupture run", "no config file given",
+                     "run `rupture run CONFIG.toml` (see --help-config)");
   std::vector<std::string> overrides = options.overrides;
   if (!options.output.empty()) overrides.push_back("output.folder=\"" + options.output + "\"");
   return loading::load_config(options.config, overrides);
@@ -48,17 +50,19 @@ std::string command_line(const std::string& name, const RunOptions& options) {
 void print_check(const loading::RunConfig& config, const Sample& sample, const loading::RunPlan& plan) {
   fmt::print("# resolved configuration\n{}\n\n", loading::to_json(config).dump(2));
   fmt::print("sample: {} particles, {} bonds\n", sample.size(), sample.bonds.size());
-  fmt::print("dt: {:.4g} s ({}), critical dt {:.4g} s from the stiffest particle (springs summing to {:.4g} N/mm on "
-             "{:.4g} g), safety {:g}\n",
-             plan.dt, plan.dt_auto ? "auto" : "given", plan.critical_dt, plan.stiffest_spring_sum,
-             units::mass_to_grams(plan.stiffest_mass), config.dt_safety);
-  fmt::print("ramp: {} steps = {:.4g} s; plate separation l0 = {:.4g} mm\n", config.ramp_steps, plan.ramp_time,
-             plan.plate_separation);
+  fmt::print(
+      "dt: {:.4g} s ({}), critical dt {:.4g} s from the stiffest particle (springs summing to {:.4g} N/mm on "
+      "{:.4g} g), safety {:g}\n",
+      plan.dt, plan.dt_auto ? "auto" : "given", plan.critical_dt, plan.stiffest_spring_sum,
+      units::mass_to_grams(plan.stiffest_mass), config.dt_safety);
+  fmt::print("ramp: {} steps = {:.4g} s; plate separation l0 = {:.4g} mm\n", config.ramp_steps,
+             plan.ramp_time, plan.plate_separation);
   fmt::print("plate speed / wave speed: {:.3g} ({:g} mm/s vs {:.4g} mm/s)\n", plan.speed_ratio, config.speed,
              plan.wave_speed);
   fmt::print("first bond break expected near strain {:.3g} % (affine estimate)\n", plan.first_break_strain);
-  fmt::print("estimate: at most {} steps (to stop.max_strain {} % or stop.max_steps), about {:.3g} s of wall time\n",
-             plan.estimated_steps, config.max_strain, plan.estimated_seconds);
+  fmt::print(
+      "estimate: at most {} steps (to stop.max_strain {} % or stop.max_steps), about {:.3g} s of wall time\n",
+      plan.estimated_steps, config.max_strain, plan.estimated_seconds);
   fmt::print("memory: {:.3g} MB ({:.0f} bytes per particle)\n", double(plan.memory_bytes) / 1e6,
              double(plan.memory_bytes) / double(std::max<std::size_t>(1, sample.size())));
   for (const auto& w : plan.warnings) fmt::print("warning: {}\n", w);
@@ -78,16 +82,19 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     }
     const auto config = load(*run_options);
     const Sample sample = loading::resolve_sample(config);
-    const auto summary = loading::run_simulation(config, sample, config.output_folder, command_line("run", *run_options));
-    fmt::print("{}: {} after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s; energy balance error {:.3g} of "
-               "the plate work; outputs in {}\n",
-               summary.status, summary.stop_reason, summary.steps, summary.strain, summary.broken_bonds,
-               summary.wall_seconds, summary.max_relative_energy_error, config.output_folder);
+    const auto summary =
+        loading::run_simulation(config, sample, config.output_folder, command_line("run", *run_options));
+    fmt::print(
+        "{}: {} after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s; energy balance error {:.3g} of "
+        "the plate work; outputs in {}\n",
+        summary.status, summary.stop_reason, summary.steps, summary.strain, summary.broken_bonds,
+        summary.wall_seconds, summary.max_relative_energy_error, config.output_folder);
     exit_code = exit_ok;
   });
 
   auto check_options = std::make_shared<RunOptions>();
-  auto* check = app.add_subcommand("check", "check a run config: resolved keys, dt, speed ratio, estimates, warnings");
+  auto* check =
+      app.add_subcommand("check", "check a run config: resolved keys, dt, speed ratio, estimates, warnings");
   add_config_options(*check, *check_options);
   check->callback([check_options] {
     if (check_options->help_config) {

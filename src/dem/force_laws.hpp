@@ -22,8 +22,8 @@ struct HookeBond {
 // Repulsion between overlapping unbonded spheres: overlap h = r_i + r_j - r > 0,
 // E = k/2 h^2, F_self = -k h d/r; nothing (no attraction) when h <= 0.
 struct LinearContact {
-  double k;           // N/mm
-  double touch;       // mm, r_i + r_j
+  double k;      // N/mm
+  double touch;  // mm, r_i + r_j
 
   double overlap(double r) const { return touch - r; }
   double energy(double r) const { return r < touch ? 0.5 * k * (touch - r) * (touch - r) : 0.0; }

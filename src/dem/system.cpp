@@ -1,5 +1,7 @@
 #include "dem/system.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cassert>
 #include <chrono>
@@ -7,8 +9,6 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
-
-#include <omp.h>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -55,7 +55,8 @@ std::vector<std::uint32_t> morton_order(const Sample& sample) {
   }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
   return order;
 }
 
@@ -66,12 +67,16 @@ void validate(const Sample& sample, const Params& p) {
   for (std::size_t b = 0; b < sample.bonds.size(); ++b) {
     const auto& bond = sample.bonds[b];
     if (bond.i >= bond.j || bond.j >= n || !(bond.rest_length > 0.0))
-      throw InputError("sample", "bond " + std::to_string(b) + " is invalid (needs i < j < particles and rest length > 0)",
-                       "regenerate or re-export the sample");
+      throw InputError(
+          "sample", "bond " + std::to_string(b) + " is invalid (needs i < j < particles and rest length > 0)",
+          "regenerate or re-export the sample");
   }
-  if (!(p.bond_stiffness > 0.0)) throw InputError("bonds.stiffness", "must be > 0 (N/mm)", "give a positive k_n");
-  if (!(p.break_distance > 0.0)) throw InputError("bonds.break_distance", "must be > 0", "give a positive b_d");
-  if (!(p.density > 0.0)) throw InputError("sample.density", "must be > 0 (g/mm^3)", "give a positive density");
+  if (!(p.bond_stiffness > 0.0))
+    throw InputError("bonds.stiffness", "must be > 0 (N/mm)", "give a positive k_n");
+  if (!(p.break_distance > 0.0))
+    throw InputError("bonds.break_distance", "must be > 0", "give a positive b_d");
+  if (!(p.density > 0.0))
+    throw InputError("sample.density", "must be > 0 (g/mm^3)", "give a positive density");
 }
 
 }  // namespace
@@ -84,8 +89,8 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
   storage_of_sample_.resize(n);
   for (std::uint32_t a = 0; a < n; ++a) storage_of_sample_[sample_of_storage_[a]] = a;
 
-  for (auto* v : {&x_, &y_, &z_, &vx_, &vy_, &vz_, &fx_, &fy_, &fz_, &inv_mass_, &radius_, &mass_, &ax_, &ay_, &az_,
-                  &xb_, &yb_, &zb_, &damped_per_particle_})
+  for (auto* v : {&x_, &y_, &z_, &vx_, &vy_, &vz_, &fx_, &fy_, &fz_, &inv_mass_, &radius_, &mass_, &ax_, &ay_,
+                  &az_, &xb_, &yb_, &zb_, &damped_per_particle_})
     v->assign(n, 0.0);
   plate_.assign(n, plate_none);
   const double rho = units::density_from_g_per_mm3(params.density);
@@ -98,14 +103,25 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
     y_[a] = ay_[a] = p.y;
     z_[a] = az_[a] = p.z;
     radius_[a] = sample.radius[s];
-    if (!(radius_[a] > 0.0)) throw InputError("sample", "particle " + std::to_string(sample.id[s]) + " has radius <= 0", "fix the sample");
+    if (!(radius_[a] > 0.0))
+      throw InputError("sample", "particle " + std::to_string(sample.id[s]) + " has radius <= 0",
+                       "fix the sample");
     mass_[a] = rho * units::sphere_volume(radius_[a]);
     inv_mass_[a] = 1.0 / mass_[a];
     max_radius_ = std::max(max_radius_, radius_[a]);
     switch (sample.group[s]) {
-      case ParticleGroup::bottom: plate_[a] = plate_bottom; bottom_y += p.y; ++bottom_n; break;
-      case ParticleGroup::top: plate_[a] = plate_top; top_y += p.y; ++top_n; break;
-      case ParticleGroup::free: break;
+      case ParticleGroup::bottom:
+        plate_[a] = plate_bottom;
+        bottom_y += p.y;
+        ++bottom_n;
+        break;
+      case ParticleGroup::top:
+        plate_[a] = plate_top;
+        top_y += p.y;
+        ++top_n;
+        break;
+      case ParticleGroup::free:
+        break;
     }
     if (plate_[a] != plate_none) glued_.push_back(a);
   }
@@ -128,7 +144,8 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
     bond_i_[b] = storage_of_sample_[bond.i];
     bond_j_[b] = storage_of_sample_[bond.j];
     bond_r0_[b] = bond.rest_length;
-    bond_k_[b] = params.scale_stiffness ? params.bond_stiffness * bond.rest_length / 4.0 : params.bond_stiffness;
+    bond_k_[b] =
+        params.scale_stiffness ? params.bond_stiffness * bond.rest_length / 4.0 : params.bond_stiffness;
     ++link_start_[bond_i_[b] + 1];
     ++link_start_[bond_j_[b] + 1];
   }
@@ -146,7 +163,8 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
     for (std::uint32_t a = 0; a < n; ++a) {
       auto& list = bonds_of[a];
       const auto other = [&](std::uint32_t b) { return bond_i_[b] == a ? bond_j_[b] : bond_i_[b]; };
-      std::sort(list.begin(), list.end(), [&](std::uint32_t l, std::uint32_t r) { return other(l) < other(r); });
+      std::sort(list.begin(), list.end(),
+                [&](std::uint32_t l, std::uint32_t r) { return other(l) < other(r); });
       link_count_[a] = static_cast<std::uint32_t>(list.size());
       std::uint32_t l = link_start_[a];
       for (const std::uint32_t b : list) {
@@ -154,7 +172,8 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
         link_bond_[l] = b;
         link_r0_[l] = bond_r0_[b];
         link_k_[l] = bond_k_[b];
-        link_limit_[l] = params.break_rule == BreakRule::absolute ? params.break_distance : params.break_distance * bond_r0_[b];
+        link_limit_[l] = params.break_rule == BreakRule::absolute ? params.break_distance
+                                                                  : params.break_distance * bond_r0_[b];
         ++l;
       }
     }
@@ -188,13 +207,33 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
 
 std::size_t System::memory_bytes() const {
   std::size_t bytes = 0;
-  for (const auto* v : {&x_, &y_, &z_, &vx_, &vy_, &vz_, &fx_, &fy_, &fz_, &inv_mass_, &radius_, &mass_, &ax_, &ay_,
-                        &az_, &xb_, &yb_, &zb_, &damped_per_particle_, &bond_r0_, &bond_k_})
+  for (const auto* v : {&x_,
+                        &y_,
+                        &z_,
+                        &vx_,
+                        &vy_,
+                        &vz_,
+                        &fx_,
+                        &fy_,
+                        &fz_,
+                        &inv_mass_,
+                        &radius_,
+                        &mass_,
+                        &ax_,
+                        &ay_,
+                        &az_,
+                        &xb_,
+                        &yb_,
+                        &zb_,
+                        &damped_per_particle_,
+                        &bond_r0_,
+                        &bond_k_})
     bytes += v->capacity() * sizeof(double);
   for (const auto* v : {&storage_of_sample_, &sample_of_storage_, &glued_, &bond_i_, &bond_j_, &link_start_,
                         &nb_start_, &nb_count_, &nb_, &cell_start_, &cell_particles_, &flagged_merged_})
     bytes += v->capacity() * sizeof(std::uint32_t);
-  for (const auto* v : {&link_count_, &link_other_, &link_bond_}) bytes += v->capacity() * sizeof(std::uint32_t);
+  for (const auto* v : {&link_count_, &link_other_, &link_bond_})
+    bytes += v->capacity() * sizeof(std::uint32_t);
   for (const auto* v : {&link_r0_, &link_k_, &link_limit_}) bytes += v->capacity() * sizeof(double);
   bytes += plate_.capacity() + intact_.capacity();
   return bytes;
@@ -216,19 +255,25 @@ void System::rebuild_neighbours() {
   double lo[3] = {x_[0], y_[0], z_[0]}, hi[3] = {x_[0], y_[0], z_[0]};
   for (std::uint32_t a = 0; a < n; ++a) {
     if (!std::isfinite(x_[a] + y_[a] + z_[a])) return;  // unstable state: the caller's check reports it
-    lo[0] = std::min(lo[0], x_[a]); hi[0] = std::max(hi[0], x_[a]);
-    lo[1] = std::min(lo[1], y_[a]); hi[1] = std::max(hi[1], y_[a]);
-    lo[2] = std::min(lo[2], z_[a]); hi[2] = std::max(hi[2], z_[a]);
+    lo[0] = std::min(lo[0], x_[a]);
+    hi[0] = std::max(hi[0], x_[a]);
+    lo[1] = std::min(lo[1], y_[a]);
+    hi[1] = std::max(hi[1], y_[a]);
+    lo[2] = std::min(lo[2], z_[a]);
+    hi[2] = std::max(hi[2], z_[a]);
   }
   const double cell = 2.0 * max_radius_ + skin;
   std::int64_t dims[3];
-  for (int d = 0; d < 3; ++d) dims[d] = std::max<std::int64_t>(1, std::min<std::int64_t>(std::int64_t((hi[d] - lo[d]) / cell) + 1, 1 << 10));
+  for (int d = 0; d < 3; ++d)
+    dims[d] =
+        std::max<std::int64_t>(1, std::min<std::int64_t>(std::int64_t((hi[d] - lo[d]) / cell) + 1, 1 << 10));
   const std::size_t cells = std::size_t(dims[0] * dims[1] * dims[2]);
   // Cells may be larger than `cell` when clamped; that only adds candidates.
   double size[3];
   for (int d = 0; d < 3; ++d) size[d] = std::max(cell, (hi[d] - lo[d]) / double(dims[d]) * (1.0 + 1e-12));
   const auto coord = [&](double v, int d) {
-    return std::min<std::int64_t>(dims[d] - 1, std::max<std::int64_t>(0, std::int64_t((v - lo[d]) / size[d])));
+    return std::min<std::int64_t>(dims[d] - 1,
+                                  std::max<std::int64_t>(0, std::int64_t((v - lo[d]) / size[d])));
   };
   cell_start_.assign(cells + 1, 0);
   cell_particles_.resize(n);
@@ -287,7 +332,8 @@ void System::rebuild_neighbours() {
 }
 
 void System::add_neighbour(std::uint32_t a, std::uint32_t b) {
-  assert(nb_count_[a] < nb_start_[a + 1] - nb_start_[a] && "neighbour slice has room for every released bond");
+  assert(nb_count_[a] < nb_start_[a + 1] - nb_start_[a] &&
+         "neighbour slice has room for every released bond");
   nb_[nb_start_[a] + nb_count_[a]++] = b;
 }
 
@@ -350,7 +396,8 @@ void System::compute_forces_impl(double half_dt) {
         for (std::uint32_t l = begin; l < end; ++l) {
           const std::uint32_t j = link_other[l];
           const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
-          if (j > a && std::sqrt(dx * dx + dy * dy + dz * dz) - link_r0[l] > link_limit[l]) flags.push_back(link_bond_[l]);
+          if (j > a && std::sqrt(dx * dx + dy * dy + dz * dz) - link_r0[l] > link_limit[l])
+            flags.push_back(link_bond_[l]);
         }
       }
       const double ra = rad[a];
@@ -383,8 +430,9 @@ void System::compute_forces_impl(double half_dt) {
         vy_[a] = vy0 * keep + h * fy;
         vz_[a] = vz0 * keep + h * fz;
         // Work of -c m v over the half step, with the mean of the old and new velocity.
-        damped_per_particle_[a] += damping * half_dt * mass_[a] *
-                                   0.5 * (vx0 * vx0 + vy0 * vy0 + vz0 * vz0 + vx_[a] * vx0 + vy_[a] * vy0 + vz_[a] * vz0);
+        damped_per_particle_[a] +=
+            damping * half_dt * mass_[a] * 0.5 *
+            (vx0 * vx0 + vy0 * vy0 + vz0 * vz0 + vx_[a] * vx0 + vy_[a] * vy0 + vz_[a] * vz0);
       } else {
         vx_[a] += h * fx;
         vy_[a] += h * fy;
@@ -423,8 +471,9 @@ double System::kick_drift(double dt) {
         vx_[a] = vx0 * keep + h * fx_[a];
         vy_[a] = vy0 * keep + h * fy_[a];
         vz_[a] = vz0 * keep + h * fz_[a];
-        damped_per_particle_[a] += damping * half * mass_[a] *
-                                   0.5 * (vx0 * vx0 + vy0 * vy0 + vz0 * vz0 + vx_[a] * vx0 + vy_[a] * vy0 + vz_[a] * vz0);
+        damped_per_particle_[a] +=
+            damping * half * mass_[a] * 0.5 *
+            (vx0 * vx0 + vy0 * vy0 + vz0 * vz0 + vx_[a] * vx0 + vy_[a] * vy0 + vz_[a] * vz0);
       } else {
         vx_[a] += h * fx_[a];
         vy_[a] += h * fy_[a];
@@ -505,9 +554,14 @@ void System::break_one(std::uint32_t b) {
   add_neighbour(j, i);
   released_ += energy;
   const std::uint32_t si = sample_of_storage_[i], sj = sample_of_storage_[j];
-  events_.push_back({step_, b, std::min(si, sj), std::max(si, sj),
+  events_.push_back({step_,
+                     b,
+                     std::min(si, sj),
+                     std::max(si, sj),
                      {0.5 * (x_[i] + x_[j]), 0.5 * (y_[i] + y_[j]), 0.5 * (z_[i] + z_[j])},
-                     bond_r0_[b], bond.stretch(r), energy});
+                     bond_r0_[b],
+                     bond.stretch(r),
+                     energy});
 }
 
 void System::break_bond(std::size_t bond) {
@@ -539,7 +593,8 @@ void System::step(double dt, const PlateMotion& top) {
   last_half_dt_ = 0.0;
   // Trapezoid rule for the plate work, consistent with the velocity-Verlet energy to O(dt^2).
   plate_work_ += 0.5 * (force_before + plate_force_[plate_top]) * (top_.displacement - u_before);
-  if (params_.damping > 0.0) damped_ = std::accumulate(damped_per_particle_.begin(), damped_per_particle_.end(), 0.0);
+  if (params_.damping > 0.0)
+    damped_ = std::accumulate(damped_per_particle_.begin(), damped_per_particle_.end(), 0.0);
 }
 
 Energies System::energies() const {

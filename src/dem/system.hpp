@@ -30,16 +30,16 @@ enum class GlueMode : std::uint8_t {
 };
 
 struct Params {
-  double bond_stiffness = 1e3;     // N/mm: k_n; with scale_stiffness, ESyS normalK (N/mm^2)
-  double break_distance = 0.05;    // mm for BreakRule::absolute, a strain (1) for ::relative
+  double bond_stiffness = 1e3;   // N/mm: k_n; with scale_stiffness, ESyS normalK (N/mm^2)
+  double break_distance = 0.05;  // mm for BreakRule::absolute, a strain (1) for ::relative
   BreakRule break_rule = BreakRule::absolute;
   bool scale_stiffness = false;    // ESyS scaling: k = normalK * r0 / 4 per bond
   double contact_stiffness = 1e3;  // N/mm: repulsion between overlapping unbonded particles
   double glue_stiffness = 1e4;     // N/mm: glue spring (GlueMode::spring only)
   GlueMode glue_mode = GlueMode::spring;
-  double density = 2.5e-4;         // g/mm^3
-  double damping = 0.0;            // 1/s: viscous damping rate, force -damping * m * v
-  double skin = 0.05;              // mm: Verlet-list skin
+  double density = 2.5e-4;  // g/mm^3
+  double damping = 0.0;     // 1/s: viscous damping rate, force -damping * m * v
+  double skin = 0.05;       // mm: Verlet-list skin
 };
 
 // Which plate a particle is glued to; doubles as the index into per-plate arrays.
@@ -53,18 +53,18 @@ struct PlateMotion {
 };
 
 struct BreakEvent {
-  std::uint64_t step = 0;           // the step whose configuration broke it
-  std::uint32_t bond = 0;           // index into Sample::bonds
-  std::uint32_t i = 0, j = 0;       // sample indices of the two particles (i < j as in the sample)
-  Vec3 midpoint;                    // mm
-  double rest_length = 0.0;         // mm
-  double stretch = 0.0;             // mm: r - r0 when it broke
-  double energy = 0.0;              // mJ released: k/2 s^2 half a step before (see apply_breaks)
+  std::uint64_t step = 0;      // the step whose configuration broke it
+  std::uint32_t bond = 0;      // index into Sample::bonds
+  std::uint32_t i = 0, j = 0;  // sample indices of the two particles (i < j as in the sample)
+  Vec3 midpoint;               // mm
+  double rest_length = 0.0;    // mm
+  double stretch = 0.0;        // mm: r - r0 when it broke
+  double energy = 0.0;         // mJ released: k/2 s^2 half a step before (see apply_breaks)
 };
 
 // Energies of the current state (mJ) and the contact count.
 struct Energies {
-  double elastic = 0.0;   // intact bonds
+  double elastic = 0.0;  // intact bonds
   double kinetic = 0.0;
   double contact = 0.0;
   double glue = 0.0;
@@ -102,9 +102,9 @@ class System {
   const Params& params() const { return params_; }
 
   Energies energies() const;
-  double plate_work() const { return plate_work_; }          // mJ done by the plates
-  double released_energy() const { return released_; }       // mJ taken out by broken bonds
-  double damping_energy() const { return damped_; }          // mJ removed by viscous damping
+  double plate_work() const { return plate_work_; }     // mJ done by the plates
+  double released_energy() const { return released_; }  // mJ taken out by broken bonds
+  double damping_energy() const { return damped_; }     // mJ removed by viscous damping
   // Force the top plate exerts on the sample (N, +y pulls), and the bottom plate's pull (N, -y
   // pulls, reported positive in tension).
   double force_top() const { return plate_force_[plate_top]; }
@@ -159,10 +159,10 @@ class System {
   // Cold per-particle data.
   std::vector<double> mass_, ax_, ay_, az_;  // t; anchor = initial position (mm)
   std::vector<std::uint8_t> plate_;
-  std::vector<double> xb_, yb_, zb_;          // positions at the last neighbour-list build (mm)
-  std::vector<double> damped_per_particle_;   // mJ
+  std::vector<double> xb_, yb_, zb_;         // positions at the last neighbour-list build (mm)
+  std::vector<double> damped_per_particle_;  // mJ
   std::vector<std::uint32_t> storage_of_sample_, sample_of_storage_;
-  std::vector<std::uint32_t> glued_;          // storage indices of glued particles, ascending
+  std::vector<std::uint32_t> glued_;  // storage indices of glued particles, ascending
 
   // Bonds in sample order (storage indices), and per-particle links (CSR): each bond seen from
   // both ends, as arrays the force loop reads with SIMD. A particle's intact links occupy

@@ -1,13 +1,13 @@
 #include "loading/config.hpp"
 
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
 #include <cmath>
 #include <fstream>
 #include <functional>
-#include <sstream>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <toml++/toml.h>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -30,7 +30,8 @@ double read_number(const toml::node& node, const std::string& where) {
 }
 std::int64_t read_integer(const toml::node& node, const std::string& where) {
   if (node.is_integer()) return *node.value<std::int64_t>();
-  if (auto v = node.value<double>(); v && *v == std::floor(*v) && std::abs(*v) < 9e18) return std::int64_t(*v);
+  if (auto v = node.value<double>(); v && *v == std::floor(*v) && std::abs(*v) < 9e18)
+    return std::int64_t(*v);
   throw InputError(where, "expects a whole number", "write e.g. 1000");
 }
 bool read_bool(const toml::node& node, const std::string& where) {
@@ -42,14 +43,25 @@ std::string read_string(const toml::node& node, const std::string& where) {
   throw InputError(where, "expects a string", "put the value in double quotes");
 }
 template <class T>
-Key number_key(std::string section, std::string name, std::string unit, std::string help, T RunConfig::*field) {
+Key number_key(std::string section, std::string name, std::string unit, std::string help,
+               T RunConfig::*field) {
   RunConfig defaults;
-  Key key{std::move(section), std::move(name), std::move(unit), fmt::format("{}", defaults.*field), std::move(help), {}, {}};
+  Key key{std::move(section),
+          std::move(name),
+          std::move(unit),
+          fmt::format("{}", defaults.*field),
+          std::move(help),
+          {},
+          {}};
   key.read = [field](const toml::node& node, RunConfig& c, const std::string& where) {
-    if constexpr (std::is_same_v<T, double>) c.*field = read_number(node, where);
-    else if constexpr (std::is_same_v<T, bool>) c.*field = read_bool(node, where);
-    else if constexpr (std::is_same_v<T, std::string>) c.*field = read_string(node, where);
-    else c.*field = static_cast<T>(read_integer(node, where));
+    if constexpr (std::is_same_v<T, double>)
+      c.*field = read_number(node, where);
+    else if constexpr (std::is_same_v<T, bool>)
+      c.*field = read_bool(node, where);
+    else if constexpr (std::is_same_v<T, std::string>)
+      c.*field = read_string(node, where);
+    else
+      c.*field = static_cast<T>(read_integer(node, where));
   };
   key.write = [field](const RunConfig& c) { return nlohmann::json(c.*field); };
   if constexpr (std::is_same_v<T, std::string>) key.default_text = fmt::format("\"{}\"", defaults.*field);
@@ -79,38 +91,76 @@ Key choice_key(std::string section, std::string name, std::string help, std::str
 const std::vector<Key>& schema() {
   static const std::vector<Key> keys = [] {
     std::vector<Key> k;
-    k.push_back(number_key("sample", "file", "", "sample file (rupture's own format, LAMMPS data or LSMGeometry), relative to this config's folder", &RunConfig::sample_file));
-    k.push_back(number_key("sample", "preset", "", "generate a preset sample instead: \"tissue\" or \"tissue-small\"", &RunConfig::sample_preset));
-    k.push_back(choice_key("sample", "lattice", "or a regular test lattice: \"chain\" or \"block\"", &RunConfig::sample_lattice, {"", "chain", "block"}));
+    k.push_back(number_key(
+        "sample", "file", "",
+        "sample file (rupture's own format, LAMMPS data or LSMGeometry), relative to this config's folder",
+        &RunConfig::sample_file));
+    k.push_back(number_key("sample", "preset", "",
+                           "generate a preset sample instead: \"tissue\" or \"tissue-small\"",
+                           &RunConfig::sample_preset));
+    k.push_back(choice_key("sample", "lattice", "or a regular test lattice: \"chain\" or \"block\"",
+                           &RunConfig::sample_lattice, {"", "chain", "block"}));
     {
-      Key cells{"sample", "lattice_cells", "1", "[1, 10, 1]", "lattice particles along x, y, z (block; chain uses y)", {}, {}};
+      Key cells{"sample",
+                "lattice_cells",
+                "1",
+                "[1, 10, 1]",
+                "lattice particles along x, y, z (block; chain uses y)",
+                {},
+                {}};
       cells.read = [](const toml::node& node, RunConfig& c, const std::string& where) {
         const auto* array = node.as_array();
-        if (array == nullptr || array->size() != 3) throw InputError(where, "expects three whole numbers", "write e.g. [4, 10, 2]");
+        if (array == nullptr || array->size() != 3)
+          throw InputError(where, "expects three whole numbers", "write e.g. [4, 10, 2]");
         for (std::size_t d = 0; d < 3; ++d) c.lattice_cells[d] = read_integer(*array->get(d), where);
       };
       cells.write = [](const RunConfig& c) { return nlohmann::json(c.lattice_cells); };
       k.push_back(std::move(cells));
     }
-    k.push_back(number_key("sample", "lattice_radius", "mm", "lattice particle radius", &RunConfig::lattice_radius));
+    k.push_back(
+        number_key("sample", "lattice_radius", "mm", "lattice particle radius", &RunConfig::lattice_radius));
     k.push_back(number_key("sample", "seed", "1", "generator seed (preset)", &RunConfig::seed));
     {
-      Key density{"sample", "density", "g/mm^3", "(the sample's)", "particle density; overrides the sample's", {}, {}};
-      density.read = [](const toml::node& node, RunConfig& c, const std::string& where) { c.density = read_number(node, where); };
-      density.write = [](const RunConfig& c) { return c.density ? nlohmann::json(*c.density) : nlohmann::json(nullptr); };
+      Key density{"sample", "density", "g/mm^3", "(the sample's)", "particle density; overrides the sample's",
+                  {},       {}};
+      density.read = [](const toml::node& node, RunConfig& c, const std::string& where) {
+        c.density = read_number(node, where);
+      };
+      density.write = [](const RunConfig& c) {
+        return c.density ? nlohmann::json(*c.density) : nlohmann::json(nullptr);
+      };
       k.push_back(std::move(density));
     }
-    k.push_back(number_key("bonds", "stiffness", "N/mm", "k_n, bond spring constant (with scale_stiffness: ESyS normalK in N/mm^2)", &RunConfig::bond_stiffness));
-    k.push_back(number_key("bonds", "break_distance", "mm", "b_d: a bond breaks when r - r0 > b_d (relative rule: b, a strain, breaks when r - r0 > b r0)", &RunConfig::break_distance));
-    k.push_back(choice_key("bonds", "break_rule", "\"absolute\" (the paper's text) or \"relative\" (ESyS-Particle)", &RunConfig::break_rule, {"absolute", "relative"}));
-    k.push_back(number_key("bonds", "scale_stiffness", "", "ESyS stiffness scaling k = stiffness * r0 / 4 per bond", &RunConfig::scale_stiffness));
-    k.push_back(number_key("contacts", "stiffness_factor", "1", "contact stiffness as a multiple of k_n", &RunConfig::contact_stiffness_factor));
-    k.push_back(number_key("contacts", "skin", "mm", "Verlet-list skin (list rebuilt when a particle moved more than skin/2)", &RunConfig::skin));
-    k.push_back(choice_key("glue", "mode", "\"spring\" (stiff springs to the plate) or \"rigid\" (glued layers move with the plate)", &RunConfig::glue_mode, {"spring", "rigid"}));
-    k.push_back(number_key("glue", "stiffness_factor", "1", "glue spring stiffness as a multiple of k_n (spring mode)", &RunConfig::glue_stiffness_factor));
+    k.push_back(number_key("bonds", "stiffness", "N/mm",
+                           "k_n, bond spring constant (with scale_stiffness: ESyS normalK in N/mm^2)",
+                           &RunConfig::bond_stiffness));
+    k.push_back(number_key(
+        "bonds", "break_distance", "mm",
+        "b_d: a bond breaks when r - r0 > b_d (relative rule: b, a strain, breaks when r - r0 > b r0)",
+        &RunConfig::break_distance));
+    k.push_back(choice_key("bonds", "break_rule",
+                           "\"absolute\" (the paper's text) or \"relative\" (ESyS-Particle)",
+                           &RunConfig::break_rule, {"absolute", "relative"}));
+    k.push_back(number_key("bonds", "scale_stiffness", "",
+                           "ESyS stiffness scaling k = stiffness * r0 / 4 per bond",
+                           &RunConfig::scale_stiffness));
+    k.push_back(number_key("contacts", "stiffness_factor", "1", "contact stiffness as a multiple of k_n",
+                           &RunConfig::contact_stiffness_factor));
+    k.push_back(number_key("contacts", "skin", "mm",
+                           "Verlet-list skin (list rebuilt when a particle moved more than skin/2)",
+                           &RunConfig::skin));
+    k.push_back(
+        choice_key("glue", "mode",
+                   "\"spring\" (stiff springs to the plate) or \"rigid\" (glued layers move with the plate)",
+                   &RunConfig::glue_mode, {"spring", "rigid"}));
+    k.push_back(number_key("glue", "stiffness_factor", "1",
+                           "glue spring stiffness as a multiple of k_n (spring mode)",
+                           &RunConfig::glue_stiffness_factor));
     k.push_back(number_key("loading", "speed", "mm/s", "top plate speed after the ramp", &RunConfig::speed));
-    k.push_back(number_key("loading", "ramp_steps", "steps", "smooth speed ramp from 0 to speed", &RunConfig::ramp_steps));
-    k.push_back(number_key("loading", "damping", "1/s", "viscous damping rate (force -damping m v); 0 = off", &RunConfig::damping));
+    k.push_back(number_key("loading", "ramp_steps", "steps", "smooth speed ramp from 0 to speed",
+                           &RunConfig::ramp_steps));
+    k.push_back(number_key("loading", "damping", "1/s", "viscous damping rate (force -damping m v); 0 = off",
+                           &RunConfig::damping));
     {
       Key dt{"time", "dt", "s", "\"auto\"", "time step, or \"auto\" = safety * critical dt", {}, {}};
       dt.read = [](const toml::node& node, RunConfig& c, const std::string& where) {
@@ -124,16 +174,25 @@ const std::vector<Key>& schema() {
       dt.write = [](const RunConfig& c) { return c.dt ? nlohmann::json(*c.dt) : nlohmann::json("auto"); };
       k.push_back(std::move(dt));
     }
-    k.push_back(number_key("time", "safety", "1", "automatic dt as a fraction of the critical dt", &RunConfig::dt_safety));
-    k.push_back(number_key("time", "allow_unstable_dt", "", "accept a dt above the stability limit", &RunConfig::allow_unstable_dt));
-    k.push_back(number_key("stop", "extra_strain", "%", "strain to keep pulling after the sample separated", &RunConfig::extra_strain));
+    k.push_back(number_key("time", "safety", "1", "automatic dt as a fraction of the critical dt",
+                           &RunConfig::dt_safety));
+    k.push_back(number_key("time", "allow_unstable_dt", "", "accept a dt above the stability limit",
+                           &RunConfig::allow_unstable_dt));
+    k.push_back(number_key("stop", "extra_strain", "%", "strain to keep pulling after the sample separated",
+                           &RunConfig::extra_strain));
     k.push_back(number_key("stop", "max_strain", "%", "stop at this strain", &RunConfig::max_strain));
-    k.push_back(number_key("stop", "max_steps", "steps", "stop after this many steps", &RunConfig::max_steps));
-    k.push_back(number_key("stop", "separation_check_interval", "steps", "steps between connectivity checks", &RunConfig::separation_check_interval));
-    k.push_back(number_key("output", "folder", "", "output folder (relative to the working directory)", &RunConfig::output_folder));
-    k.push_back(number_key("output", "interval", "steps", "steps between rows of curves.csv", &RunConfig::output_interval));
-    k.push_back(number_key("output", "snapshot_interval", "steps", "steps between VTK snapshots (0: none)", &RunConfig::snapshot_interval));
-    k.push_back(number_key("run", "threads", "1", "OpenMP threads (results do not depend on it)", &RunConfig::threads));
+    k.push_back(
+        number_key("stop", "max_steps", "steps", "stop after this many steps", &RunConfig::max_steps));
+    k.push_back(number_key("stop", "separation_check_interval", "steps", "steps between connectivity checks",
+                           &RunConfig::separation_check_interval));
+    k.push_back(number_key("output", "folder", "", "output folder (relative to the working directory)",
+                           &RunConfig::output_folder));
+    k.push_back(number_key("output", "interval", "steps", "steps between rows of curves.csv",
+                           &RunConfig::output_interval));
+    k.push_back(number_key("output", "snapshot_interval", "steps", "steps between VTK snapshots (0: none)",
+                           &RunConfig::snapshot_interval));
+    k.push_back(number_key("run", "threads", "1", "OpenMP threads (results do not depend on it)",
+                           &RunConfig::threads));
     return k;
   }();
   return keys;
@@ -179,12 +238,18 @@ void check(bool ok, const std::string& where, const std::string& problem, const 
 
 void validate(const RunConfig& c, const std::string& file) {
   const auto at = [&](const char* key) { return file + ": " + key; };
-  const int sources = int(!c.sample_file.empty()) + int(!c.sample_preset.empty()) + int(!c.sample_lattice.empty());
+  const int sources =
+      int(!c.sample_file.empty()) + int(!c.sample_preset.empty()) + int(!c.sample_lattice.empty());
   check(sources == 1, file, sources == 0 ? "no sample given" : "more than one sample given",
         "set exactly one of sample.file, sample.preset, sample.lattice");
-  check(c.bond_stiffness > 0, at("bonds.stiffness"), fmt::format("k_n = {} must be > 0 (N/mm)", c.bond_stiffness), "give a positive spring constant, e.g. 1e3");
-  check(c.break_distance > 0, at("bonds.break_distance"), fmt::format("b_d = {} must be > 0", c.break_distance), "give a positive breaking distance, e.g. 0.05");
-  check(c.contact_stiffness_factor >= 0, at("contacts.stiffness_factor"), "must be >= 0", "use 1 for contacts as stiff as bonds");
+  check(c.bond_stiffness > 0, at("bonds.stiffness"),
+        fmt::format("k_n = {} must be > 0 (N/mm)", c.bond_stiffness),
+        "give a positive spring constant, e.g. 1e3");
+  check(c.break_distance > 0, at("bonds.break_distance"),
+        fmt::format("b_d = {} must be > 0", c.break_distance),
+        "give a positive breaking distance, e.g. 0.05");
+  check(c.contact_stiffness_factor >= 0, at("contacts.stiffness_factor"), "must be >= 0",
+        "use 1 for contacts as stiff as bonds");
   check(c.skin > 0, at("contacts.skin"), "must be > 0 (mm)", "use e.g. 0.05");
   check(c.glue_stiffness_factor > 0, at("glue.stiffness_factor"), "must be > 0", "use e.g. 10");
   check(c.speed > 0, at("loading.speed"), "must be > 0 (mm/s)", "use e.g. 50");
@@ -195,14 +260,19 @@ void validate(const RunConfig& c, const std::string& file) {
   check(c.extra_strain >= 0, at("stop.extra_strain"), "must be >= 0 (%)", "use e.g. 0.5");
   check(c.max_strain > 0, at("stop.max_strain"), "must be > 0 (%)", "use e.g. 100");
   check(c.max_steps > 0, at("stop.max_steps"), "must be > 0", "use e.g. 1e7");
-  check(c.separation_check_interval > 0, at("stop.separation_check_interval"), "must be > 0 (steps)", "use e.g. 1000");
+  check(c.separation_check_interval > 0, at("stop.separation_check_interval"), "must be > 0 (steps)",
+        "use e.g. 1000");
   check(c.output_interval > 0, at("output.interval"), "must be > 0 (steps)", "use e.g. 1000");
-  check(c.snapshot_interval >= 0, at("output.snapshot_interval"), "must be >= 0 (steps)", "use 0 for no snapshots");
+  check(c.snapshot_interval >= 0, at("output.snapshot_interval"), "must be >= 0 (steps)",
+        "use 0 for no snapshots");
   check(c.threads >= 1 && c.threads <= 1024, at("run.threads"), "must be between 1 and 1024", "use e.g. 2");
   check(c.lattice_radius > 0, at("sample.lattice_radius"), "must be > 0 (mm)", "use e.g. 0.5");
-  for (auto n : c.lattice_cells) check(n >= 1 && n <= 1000, at("sample.lattice_cells"), "each count must be in 1..1000", "write e.g. [4, 10, 2]");
+  for (auto n : c.lattice_cells)
+    check(n >= 1 && n <= 1000, at("sample.lattice_cells"), "each count must be in 1..1000",
+          "write e.g. [4, 10, 2]");
   if (c.sample_lattice == "chain" || c.sample_lattice == "block")
-    check(c.lattice_cells[1] >= 2, at("sample.lattice_cells"), "needs at least 2 particles along y", "write e.g. [1, 10, 1]");
+    check(c.lattice_cells[1] >= 2, at("sample.lattice_cells"), "needs at least 2 particles along y",
+          "write e.g. [1, 10, 1]");
   check(!c.density || *c.density > 0, at("sample.density"), "must be > 0 (g/mm^3)", "use e.g. 2.5e-4");
 }
 
@@ -223,7 +293,8 @@ dem::Params RunConfig::dem_params(double sample_density) const {
   return p;
 }
 
-RunConfig parse_config(const std::string& toml_text, const std::string& source, const std::vector<std::string>& overrides) {
+RunConfig parse_config(const std::string& toml_text, const std::string& source,
+                       const std::vector<std::string>& overrides) {
   toml::table table;
   try {
     table = toml::parse(toml_text, source);
@@ -238,12 +309,14 @@ RunConfig parse_config(const std::string& toml_text, const std::string& source, 
     const std::string section(section_key.str());
     const auto* sub = section_node.as_table();
     if (sub == nullptr) {
-      throw InputError(source + ": " + section, "unknown key (every key belongs to a [section])", "valid keys: " + valid_keys());
+      throw InputError(source + ": " + section, "unknown key (every key belongs to a [section])",
+                       "valid keys: " + valid_keys());
     }
     for (const auto& [name_key, node] : *sub) {
       const std::string path = section + "." + std::string(name_key.str());
       const Key* key = find_key(path);
-      if (key == nullptr) throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
+      if (key == nullptr)
+        throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
       key->read(node, config, source + ": " + path);
     }
   }
@@ -262,8 +335,9 @@ RunConfig load_config(const std::filesystem::path& file, const std::vector<std::
 }
 
 std::string config_reference() {
-  std::string out = "# rupture run configuration: every key with its unit and default.\n"
-                    "# Give exactly one of sample.file, sample.preset, sample.lattice.\n";
+  std::string out =
+      "# rupture run configuration: every key with its unit and default.\n"
+      "# Give exactly one of sample.file, sample.preset, sample.lattice.\n";
   std::string section;
   for (const auto& key : schema()) {
     if (key.section != section) {
@@ -271,7 +345,9 @@ std::string config_reference() {
       out += fmt::format("\n[{}]\n", section);
     }
     const std::string unit = key.unit.empty() ? "" : fmt::format(" [{}]", key.unit);
-    out += fmt::format("# {}{}\n{} = {}\n", key.help, unit, key.name, key.default_text == "(the sample's)" ? "2.5e-4  # default: the sample's own" : key.default_text);
+    out += fmt::format(
+        "# {}{}\n{} = {}\n", key.help, unit, key.name,
+        key.default_text == "(the sample's)" ? "2.5e-4  # default: the sample's own" : key.default_text);
   }
   return out;
 }

@@ -6,11 +6,10 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "dem/system.hpp"
 
@@ -18,45 +17,45 @@ namespace rupture::loading {
 
 struct RunConfig {
   // [sample]: exactly one of file, preset, lattice.
-  std::string sample_file;                          // path, relative to the config file's folder
-  std::string sample_preset;                        // generator preset ("tissue", "tissue-small")
-  std::string sample_lattice;                       // "chain" or "block" (analytic test samples)
+  std::string sample_file;                              // path, relative to the config file's folder
+  std::string sample_preset;                            // generator preset ("tissue", "tissue-small")
+  std::string sample_lattice;                           // "chain" or "block" (analytic test samples)
   std::array<std::int64_t, 3> lattice_cells{1, 10, 1};  // 1: particles along x, y, z
-  double lattice_radius = 0.5;                      // mm
-  std::uint64_t seed = 1;                           // 1: generator seed (preset)
-  std::optional<double> density;                    // g/mm^3; default: the sample's own
+  double lattice_radius = 0.5;                          // mm
+  std::uint64_t seed = 1;                               // 1: generator seed (preset)
+  std::optional<double> density;                        // g/mm^3; default: the sample's own
   // [bonds]
-  double bond_stiffness = 1e3;                      // N/mm (N/mm^2 with scale_stiffness)
-  double break_distance = 0.05;                     // mm (absolute) or 1 (relative)
-  std::string break_rule = "absolute";              // "absolute" | "relative"
-  bool scale_stiffness = false;                     // ESyS: k = normalK * r0 / 4
+  double bond_stiffness = 1e3;          // N/mm (N/mm^2 with scale_stiffness)
+  double break_distance = 0.05;         // mm (absolute) or 1 (relative)
+  std::string break_rule = "absolute";  // "absolute" | "relative"
+  bool scale_stiffness = false;         // ESyS: k = normalK * r0 / 4
   // [contacts]
-  double contact_stiffness_factor = 1.0;            // 1: contact stiffness / k_n
-  double skin = 0.05;                               // mm: Verlet-list skin
+  double contact_stiffness_factor = 1.0;  // 1: contact stiffness / k_n
+  double skin = 0.05;                     // mm: Verlet-list skin
   // [glue]
-  std::string glue_mode = "spring";                 // "spring" | "rigid"
-  double glue_stiffness_factor = 10.0;              // 1: glue stiffness / k_n
+  std::string glue_mode = "spring";     // "spring" | "rigid"
+  double glue_stiffness_factor = 10.0;  // 1: glue stiffness / k_n
   // [loading]
-  double speed = 50.0;                              // mm/s
-  std::int64_t ramp_steps = 10000;                  // steps of the smooth speed ramp
-  double damping = 0.0;                             // 1/s
+  double speed = 50.0;              // mm/s
+  std::int64_t ramp_steps = 10000;  // steps of the smooth speed ramp
+  double damping = 0.0;             // 1/s
   // [time]
-  std::optional<double> dt;                         // s; empty: automatic
-  double dt_safety = 0.4;                           // 1: dt = safety * critical dt
-  bool allow_unstable_dt = false;                   // accept a dt above the stability limit
+  std::optional<double> dt;        // s; empty: automatic
+  double dt_safety = 0.4;          // 1: dt = safety * critical dt
+  bool allow_unstable_dt = false;  // accept a dt above the stability limit
   // [stop]
-  double extra_strain = 0.5;                        // %: keep pulling this much after separation
-  double max_strain = 100.0;                        // %
-  std::int64_t max_steps = 100'000'000;             // steps
-  std::int64_t separation_check_interval = 1000;    // steps
+  double extra_strain = 0.5;                      // %: keep pulling this much after separation
+  double max_strain = 100.0;                      // %
+  std::int64_t max_steps = 100'000'000;           // steps
+  std::int64_t separation_check_interval = 1000;  // steps
   // [output]
-  std::string output_folder = "run";                // relative to the working directory
-  std::int64_t output_interval = 1000;              // steps between curve rows
-  std::int64_t snapshot_interval = 0;               // steps between snapshots (0: none)
+  std::string output_folder = "run";    // relative to the working directory
+  std::int64_t output_interval = 1000;  // steps between curve rows
+  std::int64_t snapshot_interval = 0;   // steps between snapshots (0: none)
   // [run]
   std::int64_t threads = 2;
 
-  std::filesystem::path config_file;                // where it was read from (for messages)
+  std::filesystem::path config_file;  // where it was read from (for messages)
 
   dem::Params dem_params(double sample_density) const;
 };

@@ -1,12 +1,12 @@
 #include "loading/run.hpp"
 
+#include <fmt/format.h>
+#include <omp.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
-
-#include <fmt/format.h>
-#include <omp.h>
 
 #include "core/error.hpp"
 #include "core/progress.hpp"
@@ -42,22 +42,31 @@ class CsvStream {
     std::fputs(io::format_csv_header(header).c_str(), file_.get());
     std::fflush(file_.get());
   }
-  void row(const std::vector<double>& values) {
-    std::fputs(io::format_csv_row(values).c_str(), file_.get());
-  }
+  void row(const std::vector<double>& values) { std::fputs(io::format_csv_row(values).c_str(), file_.get()); }
   void flush() { std::fflush(file_.get()); }
 
  private:
   std::unique_ptr<std::FILE, decltype(&std::fclose)> file_;
 };
 
-const std::vector<std::string> curve_header = {
-    "time[s]", "step[1]", "strain[%]", "force_top[N]", "force_bottom[N]", "elastic_energy[mJ]",
-    "kinetic_energy[mJ]", "contact_energy[mJ]", "glue_energy[mJ]", "plate_work[mJ]", "released_energy[mJ]",
-    "damping_energy[mJ]", "intact_bonds[1]", "broken_bonds[1]", "contacts[1]"};
-const std::vector<std::string> break_header = {
-    "step[1]", "time[s]", "strain[%]", "particle_a[1]", "particle_b[1]", "x[mm]", "y[mm]", "z[mm]",
-    "rest_length[mm]", "energy[mJ]"};
+const std::vector<std::string> curve_header = {"time[s]",
+                                               "step[1]",
+                                               "strain[%]",
+                                               "force_top[N]",
+                                               "force_bottom[N]",
+                                               "elastic_energy[mJ]",
+                                               "kinetic_energy[mJ]",
+                                               "contact_energy[mJ]",
+                                               "glue_energy[mJ]",
+                                               "plate_work[mJ]",
+                                               "released_energy[mJ]",
+                                               "damping_energy[mJ]",
+                                               "intact_bonds[1]",
+                                               "broken_bonds[1]",
+                                               "contacts[1]"};
+const std::vector<std::string> break_header = {"step[1]",         "time[s]",   "strain[%]", "particle_a[1]",
+                                               "particle_b[1]",   "x[mm]",     "y[mm]",     "z[mm]",
+                                               "rest_length[mm]", "energy[mJ]"};
 
 // One ParaView snapshot: particles (id, radius, group, velocity) in sample order and the intact
 // bonds with their extension r - r0 (mm) and relative extension (r - r0) / r0.
@@ -85,7 +94,8 @@ void write_snapshot(const dem::System& system, const Sample& sample, const std::
     extension.push_back(system.bond_extension(b));
     relative.push_back(extension.back() / sample.bonds[b].rest_length);
   }
-  data.point_data = {{"id", 1, ids}, {"radius_mm", 1, radius}, {"group", 1, groups}, {"velocity_mm_per_s", 3, velocity}};
+  data.point_data = {
+      {"id", 1, ids}, {"radius_mm", 1, radius}, {"group", 1, groups}, {"velocity_mm_per_s", 3, velocity}};
   data.line_data = {{"extension_mm", 1, extension}, {"relative_extension", 1, relative}};
   io::write_vtp(path, data);
 }
@@ -102,8 +112,10 @@ Sample resolve_sample(const RunConfig& config) {
   if (!config.sample_lattice.empty()) {
     const auto& n = config.lattice_cells;
     const double density = config.density.value_or(2.5e-4);
-    if (config.sample_lattice == "chain") return make_chain(std::uint32_t(n[1]), config.lattice_radius, density);
-    return make_cubic_block(std::uint32_t(n[0]), std::uint32_t(n[1]), std::uint32_t(n[2]), config.lattice_radius, density);
+    if (config.sample_lattice == "chain")
+      return make_chain(std::uint32_t(n[1]), config.lattice_radius, density);
+    return make_cubic_block(std::uint32_t(n[0]), std::uint32_t(n[1]), std::uint32_t(n[2]),
+                            config.lattice_radius, density);
   }
   if (!config.sample_preset.empty()) return make_preset(config.sample_preset, config.seed);
   // A relative sample path is read from the config file's folder, so configs travel with samples.
@@ -124,12 +136,15 @@ RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sampl
   plan.dt = config.dt.value_or(config.dt_safety * plan.critical_dt);
   if (!plan.dt_auto && plan.dt > plan.critical_dt) {
     const std::string message = fmt::format(
-        "dt = {:.3g} s exceeds the stability limit {:.3g} s for k_n = {:g} N/mm (stiffest particle: springs summing "
+        "dt = {:.3g} s exceeds the stability limit {:.3g} s for k_n = {:g} N/mm (stiffest particle: springs "
+        "summing "
         "to {:.3g} N/mm on {:.3g} g)",
-        plan.dt, plan.critical_dt, config.bond_stiffness, plan.stiffest_spring_sum, units::mass_to_grams(plan.stiffest_mass));
+        plan.dt, plan.critical_dt, config.bond_stiffness, plan.stiffest_spring_sum,
+        units::mass_to_grams(plan.stiffest_mass));
     if (!config.allow_unstable_dt)
-      throw InputError(config.config_file.string() + ": time.dt", message,
-                       fmt::format("use dt <= {:.3g}, dt = \"auto\", or time.allow_unstable_dt = true", plan.critical_dt));
+      throw InputError(
+          config.config_file.string() + ": time.dt", message,
+          fmt::format("use dt <= {:.3g}, dt = \"auto\", or time.allow_unstable_dt = true", plan.critical_dt));
     plan.warnings.push_back(message + " (allowed by time.allow_unstable_dt)");
   }
   plan.ramp_time = double(config.ramp_steps) * plan.dt;
@@ -137,30 +152,37 @@ RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sampl
   const double r0 = mean_rest_length(sample);
   const dem::Params params = config.dem_params(sample.density);
   double mean_mass = 0.0;
-  for (double r : sample.radius) mean_mass += units::density_from_g_per_mm3(params.density) * units::sphere_volume(r);
+  for (double r : sample.radius)
+    mean_mass += units::density_from_g_per_mm3(params.density) * units::sphere_volume(r);
   mean_mass /= double(std::max<std::size_t>(1, sample.size()));
   const double k = params.scale_stiffness ? params.bond_stiffness * r0 / 4.0 : params.bond_stiffness;
   plan.wave_speed = r0 * std::sqrt(k / mean_mass);
   plan.speed_ratio = config.speed / plan.wave_speed;
-  plan.first_break_strain = 100.0 * (params.break_rule == dem::BreakRule::absolute ? config.break_distance / r0
-                                                                                   : config.break_distance);
+  plan.first_break_strain =
+      100.0 *
+      (params.break_rule == dem::BreakRule::absolute ? config.break_distance / r0 : config.break_distance);
   // Steps to reach max_strain: the ramp covers speed * T / 2, then constant speed.
   const double target = plan.plate_separation * config.max_strain / 100.0;
   const double ramp_distance = 0.5 * config.speed * plan.ramp_time;
-  const double steps_to_target = target <= ramp_distance
-                                     ? double(config.ramp_steps)
-                                     : double(config.ramp_steps) + (target - ramp_distance) / (config.speed * plan.dt);
+  const double steps_to_target =
+      target <= ramp_distance
+          ? double(config.ramp_steps)
+          : double(config.ramp_steps) + (target - ramp_distance) / (config.speed * plan.dt);
   plan.estimated_steps = std::uint64_t(std::min(steps_to_target, double(config.max_steps)));
-  plan.estimated_seconds = double(plan.estimated_steps) * double(sample.size()) / assumed_particle_steps_per_s;
+  plan.estimated_seconds =
+      double(plan.estimated_steps) * double(sample.size()) / assumed_particle_steps_per_s;
   plan.memory_bytes = system.memory_bytes();
   if (plan.speed_ratio > 0.01)
-    plan.warnings.push_back(fmt::format("plate speed is {:.2g} of the wave speed {:.3g} mm/s: loading is far from "
-                                        "quasi-static; lower loading.speed",
-                                        plan.speed_ratio, plan.wave_speed));
+    plan.warnings.push_back(
+        fmt::format("plate speed is {:.2g} of the wave speed {:.3g} mm/s: loading is far from "
+                    "quasi-static; lower loading.speed",
+                    plan.speed_ratio, plan.wave_speed));
   if (plan.dt_auto && config.dt_safety > 0.7)
-    plan.warnings.push_back("time.safety above 0.7 leaves little margin for contacts, which the limit does not count");
+    plan.warnings.push_back(
+        "time.safety above 0.7 leaves little margin for contacts, which the limit does not count");
   if (config.ramp_steps < 1000)
-    plan.warnings.push_back("a ramp shorter than 1000 steps sends a shock through the sample; raise loading.ramp_steps");
+    plan.warnings.push_back(
+        "a ramp shorter than 1000 steps sends a shock through the sample; raise loading.ramp_steps");
   return plan;
 }
 
@@ -192,8 +214,9 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   const double l0 = plan.plate_separation;
 
   std::filesystem::create_directories(folder);
-  const std::vector<std::string> comments = {fmt::format("rupture {} run: {}", version_string, command),
-                                             "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
+  const std::vector<std::string> comments = {
+      fmt::format("rupture {} run: {}", version_string, command),
+      "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
   CsvStream curves(folder / "curves.csv", comments, curve_header);
   CsvStream breaks(folder / "breaks.csv", comments, break_header);
 
@@ -213,10 +236,12 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   const auto record = [&] {
     const dem::Energies e = system.energies();
     const double w = system.plate_work();
-    const double total = e.elastic + e.kinetic + e.contact + e.glue + system.released_energy() + system.damping_energy();
-    curves.row({system.time(), double(system.steps_done()), strain_now(), system.force_top(), system.force_bottom(),
-                e.elastic, e.kinetic, e.contact, e.glue, w, system.released_energy(), system.damping_energy(),
-                double(system.intact_bonds()), double(system.bond_count() - system.intact_bonds()), double(e.contacts)});
+    const double total =
+        e.elastic + e.kinetic + e.contact + e.glue + system.released_energy() + system.damping_energy();
+    curves.row({system.time(), double(system.steps_done()), strain_now(), system.force_top(),
+                system.force_bottom(), e.elastic, e.kinetic, e.contact, e.glue, w, system.released_energy(),
+                system.damping_energy(), double(system.intact_bonds()),
+                double(system.bond_count() - system.intact_bonds()), double(e.contacts)});
     curves.flush();
     max_work = std::max(max_work, std::abs(w));
     const double error = std::abs(w - total);
@@ -228,7 +253,8 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
     // conservation broken by half of what was put in, and by more than the energy of a 1e-6 strain,
     // k_n l0^2 1e-12, so that rounding at rest is never mistaken for it).
     const double floor = 1e-12 * params.bond_stiffness * l0 * l0;
-    return std::isfinite(total) && std::isfinite(w) && !(error > 0.5 * std::max(max_work, total) && error > floor);
+    return std::isfinite(total) && std::isfinite(w) &&
+           !(error > 0.5 * std::max(max_work, total) && error > floor);
   };
 
   std::vector<io::PvdEntry> snapshots;
@@ -258,8 +284,9 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
     auto& events = system.break_events();
     if (!events.empty()) {
       for (const auto& ev : events)
-        breaks.row({double(ev.step), system.time(), strain_now(), double(sample.id[ev.i]), double(sample.id[ev.j]),
-                    ev.midpoint.x, ev.midpoint.y, ev.midpoint.z, ev.rest_length, ev.energy});
+        breaks.row({double(ev.step), system.time(), strain_now(), double(sample.id[ev.i]),
+                    double(sample.id[ev.j]), ev.midpoint.x, ev.midpoint.y, ev.midpoint.z, ev.rest_length,
+                    ev.energy});
       breaks.flush();
       events.clear();
     }
@@ -271,7 +298,8 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
       if (!stable) break;
     }
     if (config.snapshot_interval > 0 && done % std::uint64_t(config.snapshot_interval) == 0) snapshot();
-    if (!separated_yet && done % std::uint64_t(config.separation_check_interval) == 0 && separated(system, sets)) {
+    if (!separated_yet && done % std::uint64_t(config.separation_check_interval) == 0 &&
+        separated(system, sets)) {
       separated_yet = true;
       separation_strain = strain;
     }
@@ -300,11 +328,14 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
     summary.stop_reason = "unstable";
     const std::size_t worst = system.sample_index_of_largest_speed();
     failure = fmt::format(
-        "unstable at step {} (t = {:.6g} s, strain {:.4g} %): the energy balance broke down, fastest particle id {}; "
-        "likely cause: dt = {:.3g} s is too large for the stiffest springs (critical dt {:.3g} s{}) or the start is "
+        "unstable at step {} (t = {:.6g} s, strain {:.4g} %): the energy balance broke down, fastest "
+        "particle id {}; "
+        "likely cause: dt = {:.3g} s is too large for the stiffest springs (critical dt {:.3g} s{}) or the "
+        "start is "
         "too abrupt (loading.ramp_steps = {}); try time.dt = {:.3g} or a longer ramp",
         summary.steps, system.time(), summary.strain, sample.id[worst], plan.dt, plan.critical_dt,
-        plan.dt > plan.critical_dt ? ", exceeded" : "", config.ramp_steps, 0.5 * std::min(plan.dt, plan.critical_dt));
+        plan.dt > plan.critical_dt ? ", exceeded" : "", config.ramp_steps,
+        0.5 * std::min(plan.dt, plan.critical_dt));
   }
   const dem::StageTimes& t = system.stage_times();
   report["status"] = summary.status;
@@ -312,18 +343,24 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   if (!failure.empty()) report["error"] = failure;
   report["steps"] = summary.steps;
   report["final_strain_percent"] = summary.strain;
-  report["separation_strain_percent"] = separated_yet ? nlohmann::json(separation_strain) : nlohmann::json(nullptr);
+  report["separation_strain_percent"] =
+      separated_yet ? nlohmann::json(separation_strain) : nlohmann::json(nullptr);
   report["broken_bonds"] = summary.broken_bonds;
   report["wall_s"] = summary.wall_seconds;
-  report["particle_steps_per_s"] = double(summary.steps) * double(sample.size()) / std::max(summary.wall_seconds, 1e-9);
+  report["particle_steps_per_s"] =
+      double(summary.steps) * double(sample.size()) / std::max(summary.wall_seconds, 1e-9);
   report["energy_balance"] = {{"max_abs_error_mJ", summary.max_energy_error},
                               {"max_error_relative_to_work", summary.max_relative_energy_error},
                               {"plate_work_mJ", system.plate_work()}};
-  report["stage_seconds"] = {{"neighbours", t.neighbours}, {"integrate", t.integrate}, {"forces", t.forces},
-                             {"plates", t.plates}, {"breaks", t.breaks}};
+  report["stage_seconds"] = {{"neighbours", t.neighbours},
+                             {"integrate", t.integrate},
+                             {"forces", t.forces},
+                             {"plates", t.plates},
+                             {"breaks", t.breaks}};
   report["neighbour_rebuilds"] = system.neighbour_rebuilds();
   report["snapshots"] = snapshots.size();
-  report["memory_bytes_per_particle"] = double(system.memory_bytes()) / double(std::max<std::size_t>(1, sample.size()));
+  report["memory_bytes_per_particle"] =
+      double(system.memory_bytes()) / double(std::max<std::size_t>(1, sample.size()));
   io::write_json_atomically(folder / "run.json", report);
   if (!stable) throw RunError(failure);
   return summary;

@@ -5,10 +5,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "dem/system.hpp"
 #include "loading/config.hpp"
@@ -21,18 +20,18 @@ Sample resolve_sample(const RunConfig& config);
 
 // What a run will do, worked out without stepping.
 struct RunPlan {
-  double dt = 0.0;                   // s, the step used
-  double critical_dt = 0.0;          // s, velocity-Verlet stability limit
+  double dt = 0.0;           // s, the step used
+  double critical_dt = 0.0;  // s, velocity-Verlet stability limit
   bool dt_auto = true;
-  double stiffest_spring_sum = 0.0;  // N/mm, where the limit is reached
-  double stiffest_mass = 0.0;        // t
-  double ramp_time = 0.0;            // s
-  double plate_separation = 0.0;     // mm, l0
-  double wave_speed = 0.0;           // mm/s, longitudinal wave speed of a bond chain, r0 sqrt(k/m)
-  double speed_ratio = 0.0;          // 1, plate speed / wave speed
-  double first_break_strain = 0.0;   // %, affine estimate of the first break
-  std::uint64_t estimated_steps = 0; // to the max-strain or max-steps stop, whichever is first
-  double estimated_seconds = 0.0;    // wall time at the throughput measured in docs/performance.md
+  double stiffest_spring_sum = 0.0;   // N/mm, where the limit is reached
+  double stiffest_mass = 0.0;         // t
+  double ramp_time = 0.0;             // s
+  double plate_separation = 0.0;      // mm, l0
+  double wave_speed = 0.0;            // mm/s, longitudinal wave speed of a bond chain, r0 sqrt(k/m)
+  double speed_ratio = 0.0;           // 1, plate speed / wave speed
+  double first_break_strain = 0.0;    // %, affine estimate of the first break
+  std::uint64_t estimated_steps = 0;  // to the max-strain or max-steps stop, whichever is first
+  double estimated_seconds = 0.0;     // wall time at the throughput measured in docs/performance.md
   std::size_t memory_bytes = 0;
   std::vector<std::string> warnings;
 };
@@ -42,12 +41,12 @@ RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sampl
 nlohmann::json to_json(const RunPlan& plan);
 
 struct RunSummary {
-  std::string status;        // "finished" or "failed"
-  std::string stop_reason;   // "separated", "max_strain", "max_steps", "unstable"
+  std::string status;       // "finished" or "failed"
+  std::string stop_reason;  // "separated", "max_strain", "max_steps", "unstable"
   std::uint64_t steps = 0;
-  double strain = 0.0;       // % at the end
+  double strain = 0.0;  // % at the end
   double wall_seconds = 0.0;
-  double max_energy_error = 0.0;     // mJ: max |W - (E_e + E_k + E_contact + E_glue + E_released + E_damped)|
+  double max_energy_error = 0.0;  // mJ: max |W - (E_e + E_k + E_contact + E_glue + E_released + E_damped)|
   double max_relative_energy_error = 0.0;  // 1: the above / largest W so far
   std::size_t broken_bonds = 0;
 };

@@ -19,7 +19,8 @@ inline Sample make_chain(std::uint32_t n, double radius, double density = 2.5e-4
     sample.id.push_back(k);
     sample.position.push_back({0.0, k * spacing, 0.0});
     sample.radius.push_back(radius);
-    sample.group.push_back(k == 0 ? ParticleGroup::bottom : (k + 1 == n ? ParticleGroup::top : ParticleGroup::free));
+    sample.group.push_back(k == 0 ? ParticleGroup::bottom
+                                  : (k + 1 == n ? ParticleGroup::top : ParticleGroup::free));
     if (k > 0) sample.bonds.push_back({k - 1, k, spacing});
   }
   sample.box = {{-radius, -radius, -radius}, {radius, (n - 1) * spacing + radius, radius}};
@@ -35,14 +36,17 @@ inline Sample make_cubic_block(std::uint32_t nx, std::uint32_t ny, std::uint32_t
   Sample sample;
   sample.density = density;
   const double spacing = 2.0 * radius;
-  const auto index = [&](std::uint32_t ix, std::uint32_t iy, std::uint32_t iz) { return (iy * nz + iz) * nx + ix; };
+  const auto index = [&](std::uint32_t ix, std::uint32_t iy, std::uint32_t iz) {
+    return (iy * nz + iz) * nx + ix;
+  };
   for (std::uint32_t iy = 0; iy < ny; ++iy)
     for (std::uint32_t iz = 0; iz < nz; ++iz)
       for (std::uint32_t ix = 0; ix < nx; ++ix) {
         sample.id.push_back(index(ix, iy, iz));
         sample.position.push_back({ix * spacing, iy * spacing, iz * spacing});
         sample.radius.push_back(radius);
-        sample.group.push_back(iy == 0 ? ParticleGroup::bottom : (iy + 1 == ny ? ParticleGroup::top : ParticleGroup::free));
+        sample.group.push_back(iy == 0 ? ParticleGroup::bottom
+                                       : (iy + 1 == ny ? ParticleGroup::top : ParticleGroup::free));
       }
   // Bonds sorted by (i, j): for each particle, its +x, +z, +y neighbours in increasing index.
   for (std::uint32_t iy = 0; iy < ny; ++iy)

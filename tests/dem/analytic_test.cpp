@@ -1,9 +1,9 @@
 // Analytic checks of the engine on regular lattices: oscillation frequencies of a bond and a chain,
 // the stability limit, the exact breaking point, the linear stiffness and stored energy of a block.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/units.hpp"
 #include "dem/system.hpp"
@@ -12,9 +12,9 @@
 namespace rupture::dem {
 namespace {
 
-constexpr double k_n = 1e3;        // N/mm
-constexpr double radius = 0.5;     // mm
-constexpr double density = 2.5e-4; // g/mm^3
+constexpr double k_n = 1e3;         // N/mm
+constexpr double radius = 0.5;      // mm
+constexpr double density = 2.5e-4;  // g/mm^3
 
 double particle_mass() { return units::density_from_g_per_mm3(density) * units::sphere_volume(radius); }
 
@@ -44,7 +44,9 @@ double measured_period(System& system, std::size_t particle, double dt, std::siz
 }
 
 // Velocity Verlet oscillates at omega_h with sin(omega_h dt / 2) = omega dt / 2.
-double verlet_period(double omega, double dt) { return 2.0 * units::pi / (2.0 / dt * std::asin(omega * dt / 2.0)); }
+double verlet_period(double omega, double dt) {
+  return 2.0 * units::pi / (2.0 / dt * std::asin(omega * dt / 2.0));
+}
 
 TEST(Analytic, SingleBondOscillatesAtSqrtKOverM) {
   Sample sample = make_chain(3, radius, density);
@@ -64,9 +66,11 @@ TEST(Analytic, ChainLowestModeHasTheLatticeFrequency) {
   System system(sample, rigid_params());
   for (std::uint32_t i = 1; i <= free_particles; ++i)
     system.set_velocity(i, {0.0, std::sin(i * units::pi / (free_particles + 1)), 0.0});
-  const double omega = 2.0 * std::sqrt(k_n / particle_mass()) * std::sin(units::pi / (2.0 * (free_particles + 1)));
+  const double omega =
+      2.0 * std::sqrt(k_n / particle_mass()) * std::sin(units::pi / (2.0 * (free_particles + 1)));
   const double dt = 0.02 * system.critical_dt();
-  const double period = measured_period(system, free_particles / 2, dt, std::size_t(6.5 * 2.0 * units::pi / omega / dt));
+  const double period =
+      measured_period(system, free_particles / 2, dt, std::size_t(6.5 * 2.0 * units::pi / omega / dt));
   EXPECT_NEAR(period, verlet_period(omega, dt), 1e-3 * period);
 }
 
@@ -149,15 +153,16 @@ TEST_P(BlockStiffness, MatchesParallelChains) {
   Sample sample = make_cubic_block(nx, ny, nz, radius, density);
   System system(sample, p);
   const double stiffness = nx * nz * k_n * GetParam().expected_stiffness_per_column_over_k;  // N/mm
-  const double dt = 0.4 * system.critical_dt(), speed = 20.0;                                  // s, mm/s
+  const double dt = 0.4 * system.critical_dt(), speed = 20.0;                                // s, mm/s
   const double ramp = 2000 * dt;
   for (int s = 1; s <= 20000; ++s) {
     const double t = s * dt;
     // Smooth start (same law as loading::SpeedRamp) so that no wave is launched.
     const double w = units::pi / ramp;
-    const PlateMotion top = t < ramp ? PlateMotion{0.5 * speed * (t - std::sin(w * t) / w), 0.5 * speed * (1 - std::cos(w * t)),
-                                                   0.5 * speed * w * std::sin(w * t)}
-                                     : PlateMotion{speed * (t - 0.5 * ramp), speed, 0.0};
+    const PlateMotion top =
+        t < ramp ? PlateMotion{0.5 * speed * (t - std::sin(w * t) / w), 0.5 * speed * (1 - std::cos(w * t)),
+                               0.5 * speed * w * std::sin(w * t)}
+                 : PlateMotion{speed * (t - 0.5 * ramp), speed, 0.0};
     system.step(dt, top);
   }
   const double u = system.top_plate().displacement;

@@ -1,10 +1,10 @@
 // The simulation's own correctness check: the plate work W equals E_e + E_k + E_contact + E_glue +
 // E_released (+ damping) to a small drift that shrinks as dt shrinks (velocity Verlet is second
 // order).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "dem/system.hpp"
 #include "loading/ramp.hpp"
@@ -32,7 +32,8 @@ Balance pull(const Sample& sample, const Params& params, double dt_fraction, dou
     system.step(dt, ramp.at(double(s) * dt));
     if (s % every == 0 || s == steps) {
       const Energies e = system.energies();
-      const double total = e.elastic + e.kinetic + e.contact + e.glue + system.released_energy() + system.damping_energy();
+      const double total =
+          e.elastic + e.kinetic + e.contact + e.glue + system.released_energy() + system.damping_energy();
       balance.max_work = std::max(balance.max_work, system.plate_work());
       balance.max_error = std::max(balance.max_error, std::abs(system.plate_work() - total));
     }

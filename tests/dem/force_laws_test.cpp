@@ -1,10 +1,10 @@
 // Each force law alone: force = -dE/dr (central difference), signs, and no contact attraction.
-#include <algorithm>
-#include <cmath>
+#include "dem/force_laws.hpp"
 
 #include <gtest/gtest.h>
 
-#include "dem/force_laws.hpp"
+#include <algorithm>
+#include <cmath>
 
 namespace rupture::dem {
 namespace {

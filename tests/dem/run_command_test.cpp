@@ -1,12 +1,12 @@
 // `rupture run` and `rupture check` end to end: configs rejected with clear messages, an unstable
 // run stopped with a diagnosis, identical bytes for any thread count, runs to separation.
-#include <algorithm>
-#include <filesystem>
-#include <string>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "io/csv.hpp"
 #include "sample/formats.hpp"
@@ -36,8 +36,8 @@ std::filesystem::path write_config(const TempDir& dir, const std::string& text) 
 TEST(RunCommand, HelpConfigShowsEveryKeyWithUnitAndDefault) {
   const auto r = run_rupture("run --help-config");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* text : {"[bonds]", "stiffness = 1000", "[N/mm]", "break_distance = 0.05", "[mm]", "dt = \"auto\"",
-                           "[mm/s]", "snapshot_interval", "threads"})
+  for (const char* text : {"[bonds]", "stiffness = 1000", "[N/mm]", "break_distance = 0.05", "[mm]",
+                           "dt = \"auto\"", "[mm/s]", "snapshot_interval", "threads"})
     EXPECT_THAT(r.out, HasSubstr(text));
 }
 
@@ -74,7 +74,8 @@ TEST(RunCommand, DtAboveStabilityLimitIsRejectedWithTheLimit) {
 TEST(RunCommand, CheckPrintsDtSpeedRatioAndEstimates) {
   const auto r = run_rupture("check '" + examples + "block.toml'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* text : {"critical dt", "plate speed / wave speed", "estimate:", "bytes per particle", "\"stiffness\": 1000.0"})
+  for (const char* text : {"critical dt", "plate speed / wave speed", "estimate:", "bytes per particle",
+                           "\"stiffness\": 1000.0"})
     EXPECT_THAT(r.out, HasSubstr(text));
 }
 
@@ -108,7 +109,8 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
 
 TEST(RunCommand, SnapshotsAreWrittenForParaView) {
   TempDir dir;
-  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") + " --set output.snapshot_interval=500");
+  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") +
+                             " --set output.snapshot_interval=500");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string pvd = slurp(dir / "out" / "snapshots.pvd");
   EXPECT_THAT(pvd, HasSubstr("snapshots/step_0000000000.vtp"));
@@ -127,11 +129,14 @@ TEST(RunCommand, SampleFileIsReadRelativeToTheConfig) {
   ASSERT_NE(at, std::string::npos);
   text.replace(at, std::string("lattice = \"block\"").size(), "file = \"block.sample\"");
   const auto config = write_config(dir, text);
-  const auto from_file = run_rupture("run " + quoted(config) + " -o " + quoted(dir / "file") + " --set stop.max_steps=300");
+  const auto from_file =
+      run_rupture("run " + quoted(config) + " -o " + quoted(dir / "file") + " --set stop.max_steps=300");
   ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
-  const auto from_lattice = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "lattice") + " --set stop.max_steps=300");
+  const auto from_lattice = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "lattice") +
+                                        " --set stop.max_steps=300");
   ASSERT_EQ(from_lattice.exit_code, 0) << from_lattice.err;
-  EXPECT_EQ(io::read_csv(dir / "file" / "curves.csv").columns, io::read_csv(dir / "lattice" / "curves.csv").columns);
+  EXPECT_EQ(io::read_csv(dir / "file" / "curves.csv").columns,
+            io::read_csv(dir / "lattice" / "curves.csv").columns);
   const auto missing = run_rupture("check " + quoted(config) + " --set sample.file=nothing.sample");
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_THAT(missing.err, HasSubstr("no such file"));

@@ -1,14 +1,14 @@
 // The reduced tissue preset end to end (too slow for the sanitizer build; block.toml covers the
 // same paths there): bit-identical outputs for any thread count, a run to separation with a force
 // peak, and the engine's state hash for 1, 2 and 3 threads.
+#include <gtest/gtest.h>
+#include <omp.h>
+
 #include <algorithm>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <omp.h>
 
 #include "dem/system.hpp"
 #include "io/csv.hpp"
@@ -73,7 +73,8 @@ TEST(RunCommand, ReducedTissueFailsWithAForcePeak) {
   const auto r = run_rupture("run '" + examples + "tissue-small.toml' -o " + quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(slurp(out / "run.json"));
-  EXPECT_TRUE(report["stop_reason"] == "separated" || report["stop_reason"] == "max_strain") << report["stop_reason"];
+  EXPECT_TRUE(report["stop_reason"] == "separated" || report["stop_reason"] == "max_strain")
+      << report["stop_reason"];
   EXPECT_LT(report["energy_balance"]["max_error_relative_to_work"].get<double>(), 1e-2);
   const auto curves = io::read_csv(out / "curves.csv");
   const auto& force = curves.column("force_top");
@@ -88,13 +89,15 @@ TEST(RunCommand, ReducedTissueFailsWithAForcePeak) {
 // Same state, bit for bit, for 1, 2 and 3 threads: the tissue preset is large enough to run the
 // parallel loops.
 TEST(BenchCommand, JsonReportsThroughputAndEqualHashesPerThreadCount) {
-  const auto r = run_rupture("bench --sample tissue-small --steps 30 --threads 1 --threads 2 --broken 0 --broken 0.5 --json");
+  const auto r = run_rupture(
+      "bench --sample tissue-small --steps 30 --threads 1 --threads 2 --broken 0 --broken 0.5 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(r.out);
   const auto& results = report["results"];
   ASSERT_EQ(results.size(), 4u);
   for (const auto& result : results)
-    for (const char* key : {"particles", "bonds", "steps", "threads", "wall_s", "particle_steps_per_s", "state_hash"})
+    for (const char* key :
+         {"particles", "bonds", "steps", "threads", "wall_s", "particle_steps_per_s", "state_hash"})
       EXPECT_TRUE(result.contains(key)) << key;
   EXPECT_EQ(results[0]["state_hash"], results[1]["state_hash"]) << "intact, 1 vs 2 threads";
   EXPECT_EQ(results[2]["state_hash"], results[3]["state_hash"]) << "half broken, 1 vs 2 threads";
