@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   cli::add_bench_command(app, exit_code);
   cli::add_analyze_command(app, exit_code);
   cli::add_monitor_command(app, exit_code);
+  cli::add_plot_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

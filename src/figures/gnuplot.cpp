@@ -1,0 +1,174 @@
+#include "figures/gnuplot.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace rupture::figures {
+
+namespace {
+
+constexpr int exec_failed = 127;  // child exit status when gnuplot could not be started (as the shell uses)
+
+// Quotes text for a gnuplot double-quoted string.
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    out += ch;
+  }
+  return out + '"';
+}
+
+std::string number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : std::string("?"); }
+
+void append_panel(std::string& gp, const Panel& panel, const std::string& data_file) {
+  gp += fmt::format("  set title {}\n  set xlabel {}\n  set ylabel {}\n  set yrange {}\n", quoted(panel.title),
+                    quoted(panel.xlabel), quoted(panel.ylabel), panel.yrange);
+  gp += "  unset arrow\n  unset label\n";
+  for (std::size_t i = 0; i < panel.markers.size(); ++i) {
+    const auto& m = panel.markers[i];
+    gp += fmt::format("  set arrow from {0}, graph 0 to {0}, graph 1 nohead dashtype 2 linewidth 1 linecolor rgb marker_color\n",
+                      number(m.x));
+    // Labels step down the frame so that close markers (x_c and x_m often are) stay readable.
+    gp += fmt::format("  set label {} at {}, graph {} left offset character 0.4, 0 textcolor rgb marker_color\n", quoted(m.label),
+                      number(m.x), 0.95 - 0.06 * static_cast<double>(i));
+  }
+  std::string plots;
+  for (std::size_t i = 0; i < panel.series.size(); ++i) {
+    const auto& s = panel.series[i];
+    const std::string style = s.style == "boxes" ? "boxes fillstyle solid 0.5" : "lines linewidth line_width";
+    plots += fmt::format("{}{} index {} using {}:{} with {} linecolor {} title {}", i == 0 ? "" : ", \\\n    ",
+                         i == 0 ? quoted(data_file) : std::string("''"), s.block, s.x_column + 1, s.y_column + 1, style,
+                         i + 1, quoted(s.title));
+  }
+  gp += "  plot " + plots + "\n";
+}
+
+}  // namespace
+
+Format parse_format(const std::string& text) {
+  if (text == "png") return Format::png;
+  if (text == "svg") return Format::svg;
+  if (text == "both") return Format::both;
+  throw InputError("--format", fmt::format("unknown format '{}'", text), "use png, svg or both");
+}
+
+std::string data_text(const Figure& figure) {
+  std::string text;
+  for (const auto& line : figure.provenance) text += "# " + line + "\n";
+  for (std::size_t b = 0; b < figure.blocks.size(); ++b) {
+    const auto& block = figure.blocks[b];
+    if (b > 0) text += "\n\n";
+    text += fmt::format("# index {}: {}\n# {}\n", b, block.title, fmt::join(block.header, " "));
+    const std::size_t rows = block.columns.empty() ? 0 : block.columns.front().size();
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < block.columns.size(); ++c) text += (c == 0 ? "" : " ") + number(block.columns[c][r]);
+      text += '\n';
+    }
+  }
+  return text;
+}
+
+std::string script_text(const Figure& figure, Format format) {
+  const std::string data_file = figure.name + ".dat";
+  std::string gp;
+  for (const auto& line : figure.provenance) gp += "# " + line + "\n";
+  gp += fmt::format(
+      "# Draws {0}.png and/or {0}.svg from {1}. Rerun in this folder with: gnuplot {0}.gp\n"
+      "# Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.\n"
+      "formats = {2}\n"
+      "width = {3}\n"
+      "height = {4}\n"
+      "font_spec = \"Sans,14\"\n"
+      "line_width = 2\n"
+      "marker_color = \"#555555\"\n\n"
+      "set datafile missing \"?\"\n"
+      "set key below box height 1.5\n"
+      "set grid\n"
+      "set tics out\n\n"
+      "do for [format in formats] {{\n"
+      "  if (format eq \"png\") {{\n"
+      "    # pngcairo draws antialiased text; the plain libgd png terminal is the fallback\n"
+      "    if (strstrt(GPVAL_TERMINALS, \"pngcairo\") > 0) {{\n"
+      "      set terminal pngcairo size width, height enhanced font font_spec\n"
+      "    }} else {{\n"
+      "      set terminal png size width, height enhanced font font_spec\n"
+      "    }}\n"
+      "    set output \"{0}.png\"\n"
+      "  }} else {{\n"
+      "    set terminal svg size width, height enhanced font font_spec background rgb \"white\"\n"
+      "    set output \"{0}.svg\"\n"
+      "  }}\n",
+      figure.name, data_file,
+      quoted(format == Format::png ? "png" : format == Format::svg ? "svg" : "png svg"), figure.width, figure.height);
+  if (figure.panels.size() > 1) gp += fmt::format("  set multiplot layout {}, 1\n", figure.panels.size());
+  for (const auto& panel : figure.panels) append_panel(gp, panel, data_file);
+  if (figure.panels.size() > 1) gp += "  unset multiplot\n";
+  gp += "  unset output\n}\n";
+  return gp;
+}
+
+std::string run_gnuplot(const std::filesystem::path& folder, const std::string& script) {
+  const char* override_program = std::getenv("RUPTURE_GNUPLOT");
+  const std::string program = override_program && *override_program ? override_program : "gnuplot";
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) throw RunError(fmt::format("cannot create a pipe for gnuplot: {}", std::strerror(errno)));
+  const pid_t pid = ::fork();
+  if (pid < 0) throw RunError(fmt::format("cannot start gnuplot: {}", std::strerror(errno)));
+  if (pid == 0) {
+    // Child: gnuplot's stdout and stderr both go to the pipe, so any message at all is seen.
+    ::close(pipe_fds[0]);
+    ::dup2(pipe_fds[1], STDOUT_FILENO);
+    ::dup2(pipe_fds[1], STDERR_FILENO);
+    ::close(pipe_fds[1]);
+    if (::chdir(folder.c_str()) != 0) ::_exit(exec_failed);
+    ::execlp(program.c_str(), program.c_str(), script.c_str(), static_cast<char*>(nullptr));
+    ::_exit(exec_failed);
+  }
+  ::close(pipe_fds[1]);
+  std::string output;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+    if (n > 0) output.append(buffer, static_cast<std::size_t>(n));
+    else if (n == 0 || errno != EINTR) break;
+  }
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  if (WIFEXITED(status) && WEXITSTATUS(status) == exec_failed && output.empty()) {
+    throw RunError(fmt::format("cannot run '{}' (not installed or not on PATH); install it with `apt-get install gnuplot-nox`",
+                               program));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw RunError(fmt::format("gnuplot {} in {} failed: {}", script, folder.string(), output));
+  }
+  return output;
+}
+
+std::vector<std::filesystem::path> draw(const Figure& figure, const std::filesystem::path& folder, Format format) {
+  const auto data = folder / (figure.name + ".dat");
+  const auto gp = folder / (figure.name + ".gp");
+  io::write_file_atomically(data, data_text(figure));
+  io::write_file_atomically(gp, script_text(figure, format));
+  const std::string output = run_gnuplot(folder, gp.filename().string());
+  if (!output.empty()) {
+    // A warning means the picture is not what the script asked for (empty range, missing data).
+    throw RunError(fmt::format("gnuplot {} in {} reported: {}", gp.filename().string(), folder.string(), output));
+  }
+  std::vector<std::filesystem::path> written{data, gp};
+  if (format != Format::svg) written.push_back(folder / (figure.name + ".png"));
+  if (format != Format::png) written.push_back(folder / (figure.name + ".svg"));
+  return written;
+}
+
+}  // namespace rupture::figures
