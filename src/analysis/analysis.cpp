@@ -169,8 +169,13 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const auto& force = grid.y[0];
   const auto& energy = grid.y[1];
 
-  // 2. One zero-phase filter for both curves.
-  const std::span<const double> raw[] = {force, energy};
+  // 2. One zero-phase filter for both curves. Its automatic strength also considers the
+  // increments of E_e: ℰ is what the peak fit reads, and noise that is white in the increments
+  // (a random walk in E_e, as in finite bundles where fibers break one by one) hardly shows in
+  // E_e itself but dominates its derivative.
+  std::vector<double> increments(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) increments[i] = energy[i + 1] - energy[i];
+  const std::span<const double> raw[] = {force, energy, increments};
   choose_shared_filter(options.filter, raw);
   r.filter = options.filter;
   r.filtered_force = apply_filter(r.filter, force);
@@ -355,7 +360,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["derivative"] = {{"method", "Savitzky-Golay, cubic"}, {"window_samples", r.derivative_window}};
   j["noise"] = {{"force", {{"value", r.force_noise}, {"unit", r.force_unit}}},
                 {"elastic_energy", {{"value", r.energy_noise}, {"unit", r.energy_unit}}},
-                {"estimator", "1.4826 median|third difference| / sqrt(20)"}};
+                {"estimator", "rms of third differences / sqrt(20), largest 0.5 % trimmed"}};
   j["x_c"] = optional_json(r.x_c);
   j["F_c"] = optional_json(r.F_c);
   j["x_m"] = optional_json(r.x_m);

@@ -43,8 +43,9 @@ std::size_t sosfiltfilt_padding(std::span<const Biquad> sections);
 std::vector<double> sosfiltfilt(std::span<const Biquad> sections, std::span<const double> y);
 
 // --- noise --------------------------------------------------------------------------------------
-// Standard deviation of white noise on a smooth curve, from the median absolute third difference
-// (which cancels any quadratic trend): sigma = 1.4826 * median|Δ³y| / sqrt(20). Robust to outliers.
+// Root-mean-square level of white noise on a smooth curve, from the third differences (which
+// cancel any quadratic trend): sigma^2 = mean(Δ³y^2) / 20, the largest 0.5 % left out so that a
+// few steps (a sudden drop) do not count as noise.
 double noise_from_differences(std::span<const double> y);
 
 // Robust scale of a residual: 1.4826 * median|r| (the standard deviation for Gaussian noise).

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "fbm/power_law.hpp"
 #include "support/tool.hpp"
 #include "synthetic_curves.hpp"
 
@@ -154,6 +155,39 @@ TEST(MonitorCli, TextInANumberFieldNamesLineAndColumn) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bad.csv:4"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("column 3 ('elastic_energy[1]')"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace rupture::analysis
+
+namespace rupture::analysis {
+namespace {
+
+// Finite bundles from `rupture fbm simulate` analysed end to end: accepted, maxima near the ELS
+// values (finite-N fluctuations of 10^5 fibers are ~1e-3), δ_x within the model's few-% bias.
+TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
+  TempDir dir;
+  for (double alpha : {0.0, 2.0}) {
+    const auto expected = fbm::power_law::maxima(alpha);
+    const auto curve = dir / ("bundle_" + std::to_string(static_cast<int>(alpha)) + ".csv");
+    const auto sim = run_rupture("fbm simulate --dist " + std::string(alpha == 0.0 ? "uniform" : "powerlaw:alpha=2") +
+                                 " --fibers 100000 --seed 7 --out " + quoted(curve));
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    const auto r = run_rupture("analyze " + quoted(curve) + " -o " + quoted(dir / "analysis.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+    EXPECT_NEAR(j["x_c"]["value"].get<double>(), expected.x_c, 0.005) << alpha;
+    EXPECT_NEAR(j["x_p"]["value"].get<double>(), expected.x_p, 0.02) << alpha;
+    EXPECT_NEAR(j["x_m"]["value"].get<double>(), expected.x_m, 0.005) << alpha;
+    EXPECT_NEAR(j["delta_x"]["value"].get<double>(), expected.delta_x, 0.05 * expected.delta_x) << alpha;
+    EXPECT_NEAR(j["A_r"]["value"].get<double>(), expected.A_r, 0.05 * expected.A_r) << alpha;
+    // The monitor replayed on the same file warns before x_c.
+    const auto m = run_rupture("monitor " + quoted(curve) + " --json " + quoted(dir / "monitor.json"));
+    ASSERT_EQ(m.exit_code, 0) << m.err;
+    const auto w = nlohmann::json::parse(slurp(dir / "monitor.json"));
+    ASSERT_FALSE(w["warning"].is_null()) << m.out;
+    EXPECT_LT(w["warning"]["strain"].get<double>(), w["x_c_observed"].get<double>()) << alpha;
+  }
 }
 
 }  // namespace
