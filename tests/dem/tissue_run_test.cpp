@@ -53,7 +53,7 @@ RunFiles run_tissue(const TempDir& dir, const std::string& name, int threads, co
 
 TEST(RunCommand, OutputsAreIdenticalForOneAndTwoThreadsAndRunToRun) {
   TempDir dir;
-  const std::string short_run = "--set stop.max_steps=3000 --set loading.speed=20000";
+  const std::string short_run = "--set stop.max_steps=1500 --set loading.speed=20000";
   const RunFiles one = run_tissue(dir, "one", 1, short_run);
   const RunFiles two = run_tissue(dir, "two", 2, short_run);
   const RunFiles again = run_tissue(dir, "again", 2, short_run);
