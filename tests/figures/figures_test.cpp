@@ -194,23 +194,27 @@ TEST(Figures, MissingGnuplotSaysHowToInstall) {
   EXPECT_THAT(r.err, HasSubstr("apt-get install gnuplot-nox"));
 }
 
+// A plot gnuplot only warns about (it still exits 0) must fail too: the picture is not what was asked.
 TEST(Figures, GnuplotWarningFailsTheDrawing) {
   TempDir dir;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   figures::Figure figure;
-  figure.name = "empty";
-  figure.blocks.push_back({"no valid points", {"x[1]", "y[1]"}, {{0.0, 1.0}, {nan, nan}}});
+  figure.name = "flat";
+  figure.blocks.push_back({"two points", {"x[1]", "y[1]"}, {{0.0, 1.0}, {0.5, 0.5}}});
   figures::Panel panel;
   panel.xlabel = "x [1]";
   panel.ylabel = "y [1]";
+  panel.yrange = "[*:*]";  // a flat curve autoscales to an empty range: gnuplot warns and widens it
   panel.series = {{0, 0, 1, "y"}};
   figure.panels.push_back(panel);
   try {
     figures::draw(figure, dir.path(), figures::Format::png);
-    ADD_FAILURE() << "a plot with no valid points must fail";
+    ADD_FAILURE() << "a gnuplot warning must fail the drawing";
   } catch (const RunError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("empty.gp"));
+    EXPECT_THAT(e.what(), HasSubstr("flat.gp"));
+    EXPECT_THAT(e.what(), HasSubstr("empty y range"));
   }
+  figure.panels.front().yrange = "[0:1]";
+  EXPECT_NO_THROW(figures::draw(figure, dir.path(), figures::Format::png));
 }
 
 TEST(Figures, DataFileSeparatesBlocksAndMarksMissingValues) {
