@@ -94,7 +94,7 @@ Figure fbm_figure(const io::CsvTable& table, const fs::path& input) {
   std::vector<Marker> markers{{x[argmax(rate)], "x_p"}, {x[argmax(force)], "x_c"}, {x[argmax(energy)], "x_m"}};
   add_loading_curves(figure, table.header[table.require("strain")], x, force, energy, rate, "", std::move(markers),
                      table.source);
-  figure.panels.front().title = "Fiber bundle, equal load sharing: F, E_e and ℰ over their maxima";
+  figure.panels.front().title = "Fiber bundle: F, E_e and ℰ over their maxima";
   return figure;
 }
 

@@ -39,7 +39,7 @@ void append_panel(std::string& gp, const Panel& panel, const std::string& data_f
     gp += fmt::format("  set arrow from {0}, graph 0 to {0}, graph 1 nohead dashtype 2 linewidth 1 linecolor rgb marker_color\n",
                       number(m.x));
     // Labels step down the frame so that close markers (x_c and x_m often are) stay readable.
-    gp += fmt::format("  set label {} at {}, graph {} left offset character 0.4, 0 textcolor rgb marker_color\n", quoted(m.label),
+    gp += fmt::format("  set label {} at {}, graph {} left offset character 0.4, 0 textcolor rgb marker_color boxed front\n", quoted(m.label),
                       number(m.x), 0.95 - 0.06 * static_cast<double>(i));
   }
   std::string plots;
@@ -94,7 +94,8 @@ std::string script_text(const Figure& figure, Format format) {
       "set datafile missing \"?\"\n"
       "set key below box height 1.5\n"
       "set grid\n"
-      "set tics out\n\n"
+      "set tics out\n"
+      "set style textbox opaque noborder  # marker labels stay readable over the curves\n\n"
       "do for [format in formats] {{\n"
       "  if (format eq \"png\") {{\n"
       "    # pngcairo draws antialiased text; the plain libgd png terminal is the fallback\n"
