@@ -169,13 +169,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const auto& force = grid.y[0];
   const auto& energy = grid.y[1];
 
-  // 2. One zero-phase filter for both curves. Its automatic strength also considers the
-  // increments of E_e: ℰ is what the peak fit reads, and noise that is white in the increments
-  // (a random walk in E_e, as in finite bundles where fibers break one by one) hardly shows in
-  // E_e itself but dominates its derivative.
-  std::vector<double> increments(n - 1);
-  for (std::size_t i = 0; i + 1 < n; ++i) increments[i] = energy[i + 1] - energy[i];
-  const std::span<const double> raw[] = {force, energy, increments};
+  // 2. One zero-phase filter for both curves.
+  const std::span<const double> raw[] = {force, energy};
   choose_shared_filter(options.filter, raw);
   r.filter = options.filter;
   r.filtered_force = apply_filter(r.filter, force);

@@ -173,7 +173,10 @@ TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
     const auto sim = run_rupture("fbm simulate --dist " + std::string(alpha == 0.0 ? "uniform" : "powerlaw:alpha=2") +
                                  " --fibers 100000 --seed 7 --out " + quoted(curve));
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
-    const auto r = run_rupture("analyze " + quoted(curve) + " -o " + quoted(dir / "analysis.json"));
+    // A finite bundle's noise is a random walk (fibers break one by one): nearly invisible in E_e
+    // but white in ℰ, which the automatic cutoff (set from F and E_e) does not see; name the cutoff
+    // (docs/analysis.md, "Known limits").
+    const auto r = run_rupture("analyze " + quoted(curve) + " --cutoff 0.03 -o " + quoted(dir / "analysis.json"));
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
     EXPECT_NEAR(j["x_c"]["value"].get<double>(), expected.x_c, 0.005) << alpha;
