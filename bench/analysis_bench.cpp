@@ -49,3 +49,4 @@ void BM_analyze_curve(benchmark::State& state) {
 BENCHMARK(BM_analyze_curve)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+BENCHMARK_MAIN();
