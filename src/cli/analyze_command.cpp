@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/analysis.hpp"
+#include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -19,13 +20,6 @@ namespace rupture::cli {
 
 namespace {
 
-struct AnalyzeOptions {
-  std::string curves, output, breaks;
-  bool no_breaks = false;
-  analysis::ColumnChoice columns;
-  std::string filter = "butterworth";
-  analysis::AnalysisOptions analysis;
-};
 
 std::string with_error(const analysis::Measured& m) {
   return m.error > 0.0 ? fmt::format("{:.6g} ± {:.2g} {}", m.value, m.error, m.unit) : fmt::format("{:.6g} {}", m.value, m.unit);
@@ -92,6 +86,31 @@ nlohmann::json inputs_json(const AnalyzeOptions& o, const std::string& breaks_us
 
 }  // namespace
 
+AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
+  const auto* o = &options;
+  const auto& a = o->analysis;
+  const std::filesystem::path curves_path(o->curves);
+  const auto table = io::read_csv(curves_path);
+  const auto curve = analysis::select_curve(table, o->columns);
+  std::string breaks_path = o->breaks;
+  if (breaks_path.empty() && !o->no_breaks) {
+    const auto beside = curves_path.parent_path() / "breaks.csv";
+    if (std::filesystem::exists(beside)) breaks_path = beside.string();
+  }
+  std::vector<double> break_strains;
+  if (!breaks_path.empty() && !o->no_breaks) {
+    break_strains = analysis::select_break_strains(io::read_csv(breaks_path), o->columns.strain_scale);
+  }
+  const auto result = analysis::analyze_curve(curve, a, break_strains);
+  nlohmann::json document = {{"tool", "rupture analyze"}, {"version", version_string},
+                             {"inputs", inputs_json(*o, breaks_path)}};
+  document.update(analysis::to_json(result));
+  const std::filesystem::path output = o->output.empty() ? curves_path.parent_path() / "analysis.json" : std::filesystem::path(o->output);
+  io::write_json_atomically(output, document);
+  print_summary(result, output);
+  return {result, output};
+}
+
 void add_analyze_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AnalyzeOptions>();
   auto* cmd = app.add_subcommand("analyze", "Analyse a loading curve for the precursor of failure (x_c, x_p, delta_x, Gamma, A_r, class)");
@@ -133,25 +152,8 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
       throw InputError("--derivative-window", fmt::format("{} is not an odd number >= 5", a.derivative_window),
                        "give an odd number of samples, at least 5");
     }
-    const std::filesystem::path curves_path(o->curves);
-    const auto table = io::read_csv(curves_path);
-    const auto curve = analysis::select_curve(table, o->columns);
-    std::string breaks_path = o->breaks;
-    if (breaks_path.empty() && !o->no_breaks) {
-      const auto beside = curves_path.parent_path() / "breaks.csv";
-      if (std::filesystem::exists(beside)) breaks_path = beside.string();
-    }
-    std::vector<double> break_strains;
-    if (!breaks_path.empty() && !o->no_breaks) {
-      break_strains = analysis::select_break_strains(io::read_csv(breaks_path), o->columns.strain_scale);
-    }
-    const auto result = analysis::analyze_curve(curve, a, break_strains);
-    nlohmann::json document = {{"tool", "rupture analyze"}, {"version", version_string},
-                               {"inputs", inputs_json(*o, breaks_path)}};
-    document.update(analysis::to_json(result));
-    const std::filesystem::path output = o->output.empty() ? curves_path.parent_path() / "analysis.json" : std::filesystem::path(o->output);
-    io::write_json_atomically(output, document);
-    print_summary(result, output);
+    const auto outcome = analyze_and_write(*o);
+    const auto& result = outcome.result;
     if (!result.accepted) {
       fmt::print(stderr, "rupture analyze: rejected: {}\n", result.rejection);
       exit_code = exit_rejected;

@@ -1,0 +1,29 @@
+// cli/analyze_command: the analysis of one curve file as `rupture analyze` does it — read the curve
+// (and breaks.csv beside it), analyse, write analysis.json with the inputs and version, print the
+// summary — shared with `rupture study`.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "analysis/analysis.hpp"
+
+namespace rupture::cli {
+
+struct AnalyzeOptions {
+  std::string curves, output, breaks;
+  bool no_breaks = false;
+  analysis::ColumnChoice columns;
+  std::string filter = "butterworth";
+  analysis::AnalysisOptions analysis;
+};
+
+struct AnalyzeOutcome {
+  analysis::AnalysisResult result;
+  std::filesystem::path output;  // the analysis.json written
+};
+
+// Throws InputError for unreadable or malformed input; a rejected curve is a normal outcome.
+AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options);
+
+}  // namespace rupture::cli
