@@ -1,5 +1,7 @@
 #include "dem/system.hpp"
 
+#include "core/morton.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -24,17 +26,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Spreads the low 21 bits of v over every third bit (for a 63-bit Morton key).
-std::uint64_t spread_bits(std::uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-
 // Storage order: particles sorted along a Z-order curve of their initial positions, so that
 // neighbours in space are neighbours in memory (ties broken by sample index: deterministic).
 std::vector<std::uint32_t> morton_order(const Sample& sample) {
@@ -49,9 +40,8 @@ std::vector<std::uint32_t> morton_order(const Sample& sample) {
   std::vector<std::uint64_t> key(n);
   for (std::size_t a = 0; a < n; ++a) {
     const auto& p = sample.position[a];
-    key[a] = spread_bits(std::uint64_t((p.x - lo.x) * scale)) |
-             spread_bits(std::uint64_t((p.y - lo.y) * scale)) << 1 |
-             spread_bits(std::uint64_t((p.z - lo.z) * scale)) << 2;
+    key[a] = morton_key(std::uint64_t((p.x - lo.x) * scale), std::uint64_t((p.y - lo.y) * scale),
+                        std::uint64_t((p.z - lo.z) * scale));
   }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);

@@ -1,5 +1,7 @@
 #include "sample/generator.hpp"
 
+#include "core/morton.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -318,16 +320,6 @@ class Packer {
   std::uint64_t positions_tried_ = 0;
 };
 
-std::uint64_t spread_bits(std::uint64_t v) {  // 21 bits -> every third bit of 63
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-
 }  // namespace
 
 Sample generate_sample(const PackingParams& params, std::uint64_t seed, GenerationReport* report) {
@@ -482,9 +474,8 @@ void sort_spatially(Sample& sample, double cell_size) {
   std::vector<std::uint64_t> key(n);
   for (std::size_t k = 0; k < n; ++k) {
     const auto c = grid.coords(sample.position[k]);
-    key[k] = spread_bits(static_cast<std::uint64_t>(c[0])) |
-             spread_bits(static_cast<std::uint64_t>(c[1])) << 1 |
-             spread_bits(static_cast<std::uint64_t>(c[2])) << 2;
+    key[k] = morton_key(static_cast<std::uint64_t>(c[0]), static_cast<std::uint64_t>(c[1]),
+                        static_cast<std::uint64_t>(c[2]));
   }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
