@@ -86,6 +86,18 @@ nlohmann::json inputs_json(const AnalyzeOptions& o, const std::string& breaks_us
 
 }  // namespace
 
+void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns) {
+  cmd.add_option("--strain", columns.strain, "Strain column (default: strain)");
+  cmd.add_option("--force", columns.force, "Force column (default: force, else force_top)");
+  cmd.add_option("--energy", columns.energy, "Elastic energy column (default: elastic_energy)");
+  cmd.add_option("--strain-scale", columns.strain_scale, "Multiply the strain column by this");
+  cmd.add_option("--force-scale", columns.force_scale, "Multiply the force column by this");
+  cmd.add_option("--energy-scale", columns.energy_scale, "Multiply the energy column by this");
+  cmd.add_option("--strain-unit", columns.strain_unit, "Strain unit after scaling (default: from the header)");
+  cmd.add_option("--force-unit", columns.force_unit, "Force unit after scaling (default: from the header)");
+  cmd.add_option("--energy-unit", columns.energy_unit, "Energy unit after scaling (default: from the header)");
+}
+
 AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
   const auto* o = &options;
   const auto& a = o->analysis;
@@ -119,15 +131,7 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--output", o->output, "Result file (default: analysis.json beside the curves)");
   cmd->add_option("--breaks", o->breaks, "Bond-break table with a strain column (default: breaks.csv beside the curves, if present)");
   cmd->add_flag("--no-breaks", o->no_breaks, "Ignore any breaks.csv");
-  cmd->add_option("--strain", o->columns.strain, "Strain column (default: strain)");
-  cmd->add_option("--force", o->columns.force, "Force column (default: force, else force_top)");
-  cmd->add_option("--energy", o->columns.energy, "Elastic energy column (default: elastic_energy)");
-  cmd->add_option("--strain-scale", o->columns.strain_scale, "Multiply the strain column by this");
-  cmd->add_option("--force-scale", o->columns.force_scale, "Multiply the force column by this");
-  cmd->add_option("--energy-scale", o->columns.energy_scale, "Multiply the energy column by this");
-  cmd->add_option("--strain-unit", o->columns.strain_unit, "Strain unit after scaling (default: from the header)");
-  cmd->add_option("--force-unit", o->columns.force_unit, "Force unit after scaling (default: from the header)");
-  cmd->add_option("--energy-unit", o->columns.energy_unit, "Energy unit after scaling (default: from the header)");
+  add_curve_column_options(*cmd, o->columns);
   cmd->add_option("--filter", o->filter, "Zero-phase low-pass for F and E_e: butterworth | savgol | none")
       ->check(CLI::IsMember({"butterworth", "savgol", "none"}));
   cmd->add_option("--cutoff", o->analysis.filter.cutoff, "Butterworth cutoff in units of the Nyquist frequency (0 < c < 1; default: from the noise)")

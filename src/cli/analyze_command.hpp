@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+
+#include <CLI/CLI.hpp>
 #include <string>
 
 #include "analysis/analysis.hpp"
@@ -22,6 +24,10 @@ struct AnalyzeOutcome {
   analysis::AnalysisResult result;
   std::filesystem::path output;  // the analysis.json written
 };
+
+// --strain/--force/--energy, their scales and units: how `analyze` and `monitor` name the columns
+// of a table that rupture did not write.
+void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns);
 
 // Throws InputError for unreadable or malformed input; a rejected curve is a normal outcome.
 AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options);

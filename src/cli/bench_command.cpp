@@ -120,7 +120,7 @@ nlohmann::json to_json(const BenchResult& r, const std::string& sample) {
 void add_bench_command(CLI::App& app, int&) {
   auto options = std::make_shared<BenchOptions>();
   auto* bench =
-      app.add_subcommand("bench", "time whole DEM steps: particle-steps per second per thread count");
+      app.add_subcommand("bench", "Time whole DEM steps: particle-steps per second per thread count");
   bench->add_option("--sample", options->sample, "preset name (tissue, tissue-small) or sample file")
       ->capture_default_str();
   bench->add_option("--threads", options->threads, "thread counts to time (repeatable)")

@@ -17,6 +17,7 @@
 
 #include "analysis/analysis.hpp"
 #include "analysis/monitor.hpp"
+#include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -144,12 +145,7 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--poll", o->poll_ms, "Milliseconds between reads of a followed file")->check(CLI::Range(1, 60000));
   cmd->add_option("--json", o->json, "Also write the warning and the outcome to this JSON file");
-  cmd->add_option("--strain", o->columns.strain, "Strain column (default: strain)");
-  cmd->add_option("--force", o->columns.force, "Force column (default: force, else force_top)");
-  cmd->add_option("--energy", o->columns.energy, "Elastic energy column (default: elastic_energy)");
-  cmd->add_option("--strain-scale", o->columns.strain_scale, "Multiply the strain column by this");
-  cmd->add_option("--force-scale", o->columns.force_scale, "Multiply the force column by this");
-  cmd->add_option("--energy-scale", o->columns.energy_scale, "Multiply the energy column by this");
+  add_curve_column_options(*cmd, o->columns);
   cmd->add_option("--window", o->monitor.window, "Samples in each causal cubic fit")->check(CLI::Range(7, 100000));
   cmd->add_option("--drop", o->monitor.drop, "Fraction by which the energy rate must fall below its maximum")
       ->check(CLI::Range(0.001, 0.9));

@@ -72,7 +72,7 @@ void print_check(const loading::RunConfig& config, const Sample& sample, const l
 
 void add_run_commands(CLI::App& app, int& exit_code) {
   auto run_options = std::make_shared<RunOptions>();
-  auto* run = app.add_subcommand("run", "run a DEM tension test from a TOML config");
+  auto* run = app.add_subcommand("run", "Run a DEM tension test from a TOML config");
   add_config_options(*run, *run_options);
   run->add_option("-o,--output", run_options->output, "output folder (overrides output.folder)");
   run->callback([run_options, &exit_code] {
@@ -94,7 +94,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
 
   auto check_options = std::make_shared<RunOptions>();
   auto* check =
-      app.add_subcommand("check", "check a run config: resolved keys, dt, speed ratio, estimates, warnings");
+      app.add_subcommand("check", "Check a run config: resolved keys, dt, speed ratio, estimates, warnings");
   add_config_options(*check, *check_options);
   check->callback([check_options] {
     if (check_options->help_config) {
