@@ -21,7 +21,7 @@ using testing::run_rupture;
 using testing::slurp;
 using testing::TempDir;
 
-const std::string examples = std::string(RUPTURE_TEST_DATA_DIR) + "/../../examples/";
+const std::string examples = RUPTURE_EXAMPLES_DIR;
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 

@@ -29,7 +29,7 @@ using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using ::testing::HasSubstr;
 
-const std::string examples = std::string(RUPTURE_TEST_DATA_DIR) + "/../../examples/";
+const std::string examples = RUPTURE_EXAMPLES_DIR;
 
 std::string shell_quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
