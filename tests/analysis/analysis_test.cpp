@@ -17,6 +17,7 @@ namespace {
 
 using testing::add_noise;
 using testing::power_law_curve;
+using testing::force_first_curve;
 
 TEST(AnalyzeCurve, UniformBundleRecoversClosedForms) {
   const auto r = analyze_curve(power_law_curve(0.0, 2001), {});
@@ -65,17 +66,7 @@ TEST(AnalyzeCurve, PowerLawBundlesRecoverClosedForms) {
 // F peaks at 0.4, ℰ at 0.5: the force maximum comes first, so δ_x = −0.1 and the posterior must
 // say so (the prior admits both signs).
 TEST(AnalyzeCurve, ForcePeakBeforeEnergyRatePeakGivesNegativeDelay) {
-  Curve c;
-  c.source = "reversed";
-  c.strain_unit = c.force_unit = c.energy_unit = "1";
-  const double width = 0.1, sqrt_pi = std::sqrt(3.14159265358979323846);
-  for (int i = 0; i <= 2000; ++i) {
-    const double x = i / 2000.0;
-    c.strain.push_back(x);
-    c.force.push_back(std::exp(-std::pow((x - 0.4) / width, 2)));
-    // E_e with dE_e/dx = exp(-((x - 0.5)/width)^2).
-    c.energy.push_back(0.5 * sqrt_pi * width * (std::erf((x - 0.5) / width) + std::erf(0.5 / width)));
-  }
+  Curve c = force_first_curve();
   add_noise(c, 0.01, 1e-5, 3);
   const auto r = analyze_curve(c, {});
   ASSERT_TRUE(r.delay);

@@ -64,14 +64,7 @@ TEST(Monitor, WarnsBeforeCriticalStrainOnFiniteBundles) {
 }
 
 TEST(Monitor, StaysSilentWhenTheForcePeaksFirst) {
-  Curve c;
-  const double width = 0.1, sqrt_pi = std::sqrt(3.14159265358979323846);
-  for (int i = 0; i <= 2000; ++i) {
-    const double x = i / 2000.0;
-    c.strain.push_back(x);
-    c.force.push_back(std::exp(-std::pow((x - 0.4) / width, 2)));
-    c.energy.push_back(0.5 * sqrt_pi * width * (std::erf((x - 0.5) / width) + std::erf(0.5 / width)));
-  }
+  const Curve c = testing::force_first_curve();
   const auto s = replay(c);
   EXPECT_FALSE(s.warning);
   EXPECT_TRUE(s.force_peaked_before_warning);

@@ -57,4 +57,20 @@ inline void add_noise(Curve& c, double force_sigma, double energy_sigma, std::ui
   }
 }
 
+// Gaussian force peak at 0.4 and energy-rate peak at 0.5 (E_e integrates the rate exactly), 2001
+// points on [0, 1]: the force maximum comes first, so the true δ_x is −0.1.
+inline Curve force_first_curve() {
+  Curve c;
+  c.source = "force-first";
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  const double width = 0.1, sqrt_pi = std::sqrt(3.14159265358979323846);
+  for (int i = 0; i <= 2000; ++i) {
+    const double x = i / 2000.0;
+    c.strain.push_back(x);
+    c.force.push_back(std::exp(-std::pow((x - 0.4) / width, 2)));
+    c.energy.push_back(0.5 * sqrt_pi * width * (std::erf((x - 0.5) / width) + std::erf(0.5 / width)));
+  }
+  return c;
+}
+
 }  // namespace rupture::analysis::testing
