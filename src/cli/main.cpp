@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   cli::add_analyze_command(app, exit_code);
   cli::add_monitor_command(app, exit_code);
   cli::add_plot_command(app, exit_code);
+  cli::add_scan_command(app, exit_code);
+  cli::add_report_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
