@@ -157,15 +157,7 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
                 [&](std::uint32_t l, std::uint32_t r) { return other(l) < other(r); });
       link_count_[a] = static_cast<std::uint32_t>(list.size());
       std::uint32_t l = link_start_[a];
-      for (const std::uint32_t b : list) {
-        link_other_[l] = other(b);
-        link_bond_[l] = b;
-        link_r0_[l] = bond_r0_[b];
-        link_k_[l] = bond_k_[b];
-        link_limit_[l] = params.break_rule == BreakRule::absolute ? params.break_distance
-                                                                  : params.break_distance * bond_r0_[b];
-        ++l;
-      }
+      for (const std::uint32_t b : list) set_link(l++, a, b);
     }
   }
 
@@ -227,6 +219,16 @@ std::size_t System::memory_bytes() const {
   for (const auto* v : {&link_r0_, &link_k_, &link_limit_}) bytes += v->capacity() * sizeof(double);
   bytes += plate_.capacity() + intact_.capacity();
   return bytes;
+}
+
+// Link slot l of particle a holds bond b: the other end and the bond's constants.
+void System::set_link(std::uint32_t l, std::uint32_t a, std::uint32_t b) {
+  link_bond_[l] = b;
+  link_other_[l] = bond_i_[b] == a ? bond_j_[b] : bond_i_[b];
+  link_r0_[l] = bond_r0_[b];
+  link_k_[l] = bond_k_[b];
+  link_limit_[l] = params_.break_rule == BreakRule::absolute ? params_.break_distance
+                                                             : params_.break_distance * bond_r0_[b];
 }
 
 bool System::bonded_intact(std::uint32_t a, std::uint32_t b) const {
@@ -433,17 +435,34 @@ void System::compute_forces_impl(double half_dt) {
   times_.forces += seconds_since(start);
 }
 
+namespace {
+
+// The farthest mover of a step: larger (|dt v| / r)^2 wins, ties go to the lower storage index, so
+// the result is the same for any split of the loop over threads.
+struct MoveMax {
+  double move2;
+  std::uint32_t index;
+};
+inline MoveMax farther(const MoveMax& a, const MoveMax& b) {
+  return (a.move2 > b.move2 || (a.move2 == b.move2 && a.index < b.index)) ? a : b;
+}
+#pragma omp declare reduction(farther : MoveMax : omp_out = farther(omp_out, omp_in)) \
+    initializer(omp_priv = MoveMax{-1.0, 0xffffffffu})
+
+}  // namespace
+
 // First half-kick and drift; glued particles in rigid mode follow their plate. Returns the largest
-// squared displacement since the last neighbour-list build (mm^2).
+// squared displacement since the last neighbour-list build (mm^2) and this step's farthest mover.
 template <bool damped>
-double System::kick_drift(double dt) {
+System::DriftResult System::kick_drift(double dt) {
   const std::uint32_t n = static_cast<std::uint32_t>(x_.size());
   const double half = 0.5 * dt, damping = params_.damping;
   const bool rigid = params_.glue_mode == GlueMode::rigid;
   const double plate_u[3] = {0.0, 0.0, top_.displacement};
   const double plate_v[3] = {0.0, 0.0, top_.velocity};
   double max_d2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_d2) if (parallel_)
+  MoveMax mover{-1.0, 0xffffffffu};
+#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(farther : mover) if (parallel_)
   for (std::uint32_t a = 0; a < n; ++a) {
     const std::uint8_t plate = plate_[a];
     if (rigid && plate != plate_none) {
@@ -472,11 +491,15 @@ double System::kick_drift(double dt) {
       x_[a] += dt * vx_[a];
       y_[a] += dt * vy_[a];
       z_[a] += dt * vz_[a];
+      const double v2 = vx_[a] * vx_[a] + vy_[a] * vy_[a] + vz_[a] * vz_[a];
+      double move2 = dt * dt * v2 / (radius_[a] * radius_[a]);
+      if (!(move2 <= std::numeric_limits<double>::max())) move2 = std::numeric_limits<double>::infinity();
+      mover = farther(mover, MoveMax{move2, a});
     }
     const double dx = x_[a] - xb_[a], dy = y_[a] - yb_[a], dz = z_[a] - zb_[a];
     max_d2 = std::max(max_d2, dx * dx + dy * dy + dz * dz);
   }
-  return max_d2;
+  return {max_d2, std::max(mover.move2, 0.0), mover.index == 0xffffffffu ? 0u : mover.index};
 }
 
 // Force of each plate on the sample along y: the glue springs' pull, or in rigid mode what the
@@ -571,11 +594,12 @@ void System::step(double dt, const PlateMotion& top) {
   const double u_before = top_.displacement;
   auto start = Clock::now();
   top_ = top;
-  const double max_d2 = params_.damping > 0.0 ? kick_drift<true>(dt) : kick_drift<false>(dt);
+  const DriftResult drift = params_.damping > 0.0 ? kick_drift<true>(dt) : kick_drift<false>(dt);
+  last_move_ = {std::sqrt(drift.move2), sample_of_storage_[drift.mover]};
   times_.integrate += seconds_since(start);
   time_ += dt;
   ++step_;
-  if (!(max_d2 <= 0.25 * params_.skin * params_.skin)) rebuild_neighbours();
+  if (!(drift.max_d2 <= 0.25 * params_.skin * params_.skin)) rebuild_neighbours();
   compute_forces(0.5 * dt);
   update_plate_forces();
   last_half_dt_ = 0.5 * dt;
@@ -631,6 +655,120 @@ Energies System::energies() const {
     e.contacts += contacts[a];
   }
   return e;
+}
+
+EngineState System::save_state() const {
+  EngineState s;
+  s.step = step_;
+  s.time = time_;
+  s.top = top_;
+  s.plate_force = plate_force_;
+  s.plate_work = plate_work_;
+  s.released = released_;
+  s.damped = damped_;
+  s.neighbour_rebuilds = rebuilds_;
+  s.forces_stale = forces_stale_;
+  s.stage_times = times_;
+  s.sample_of_storage = sample_of_storage_;
+  s.x = x_, s.y = y_, s.z = z_;
+  s.vx = vx_, s.vy = vy_, s.vz = vz_;
+  s.fx = fx_, s.fy = fy_, s.fz = fz_;
+  s.xb = xb_, s.yb = yb_, s.zb = zb_;
+  s.damped_per_particle = damped_per_particle_;
+  s.intact = intact_;
+  s.link_count = link_count_;
+  s.link_bond = link_bond_;
+  s.nb_start = nb_start_;
+  s.nb_count = nb_count_;
+  // Slots past each slice's used part hold leftovers of older lists that are never read: zero
+  // them so that equal states give equal checkpoint bytes.
+  s.nb.assign(nb_.size(), 0);
+  for (std::size_t a = 0; a < x_.size(); ++a)
+    std::copy_n(nb_.begin() + nb_start_[a], nb_count_[a], s.nb.begin() + nb_start_[a]);
+  return s;
+}
+
+void System::restore_state(const EngineState& s, const std::string& source) {
+  const std::size_t n = x_.size(), bonds = bond_i_.size();
+  const auto fail = [&](const std::string& field, const std::string& problem) {
+    throw InputError(source + ": " + field, problem,
+                     "resume with the sample and config the checkpoint was written with, or use an older "
+                     "checkpoint");
+  };
+  const auto require_size = [&](const std::string& field, std::size_t size, std::size_t expected) {
+    if (size != expected)
+      fail(field, "holds " + std::to_string(size) + " values where this run has " + std::to_string(expected));
+  };
+  if (s.sample_of_storage != sample_of_storage_)
+    fail("sample_of_storage", "the particle order differs from this sample's (another sample?)");
+  const std::pair<const char*, const std::vector<double>*> particle_fields[] = {
+      {"x", &s.x},   {"y", &s.y},   {"z", &s.z},   {"vx", &s.vx}, {"vy", &s.vy},
+      {"vz", &s.vz}, {"fx", &s.fx}, {"fy", &s.fy}, {"fz", &s.fz}, {"xb", &s.xb},
+      {"yb", &s.yb}, {"zb", &s.zb}, {"damped_per_particle", &s.damped_per_particle}};
+  for (const auto& [name, values] : particle_fields) require_size(name, values->size(), n);
+  require_size("intact", s.intact.size(), bonds);
+  require_size("link_count", s.link_count.size(), n);
+  require_size("link_bond", s.link_bond.size(), link_bond_.size());
+  require_size("nb_start", s.nb_start.size(), n + 1);
+  require_size("nb_count", s.nb_count.size(), n);
+
+  std::size_t intact = 0;
+  for (std::size_t b = 0; b < bonds; ++b) {
+    if (s.intact[b] > 1) fail("intact", "bond " + std::to_string(b) + " has flag " + std::to_string(s.intact[b]));
+    intact += s.intact[b];
+  }
+  // Each particle's slice must hold its own bonds (in any order), the intact ones first.
+  std::vector<std::uint32_t> mine, theirs;
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::uint32_t begin = link_start_[a], end = link_start_[a + 1];
+    if (s.link_count[a] > end - begin)
+      fail("link_count", "particle slot " + std::to_string(a) + " counts more links than it has");
+    mine.assign(link_bond_.begin() + begin, link_bond_.begin() + end);
+    theirs.assign(s.link_bond.begin() + begin, s.link_bond.begin() + end);
+    std::sort(mine.begin(), mine.end());
+    std::sort(theirs.begin(), theirs.end());
+    if (mine != theirs) fail("link_bond", "particle slot " + std::to_string(a) + " lists bonds it does not have");
+    for (std::uint32_t l = begin; l < end; ++l)
+      if ((l < begin + s.link_count[a]) != (s.intact[s.link_bond[l]] != 0))
+        fail("link_count", "particle slot " + std::to_string(a) + " disagrees with the intact flags");
+  }
+  if (s.nb_start[0] != 0) fail("nb_start", "does not start at 0");
+  for (std::size_t a = 0; a < n; ++a) {
+    if (s.nb_start[a + 1] < s.nb_start[a]) fail("nb_start", "decreases at particle slot " + std::to_string(a));
+    if (s.nb_count[a] > s.nb_start[a + 1] - s.nb_start[a])
+      fail("nb_count", "particle slot " + std::to_string(a) + " overflows its neighbour slice");
+  }
+  require_size("nb", s.nb.size(), s.nb_start[n]);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::uint32_t p = s.nb_start[a]; p < s.nb_start[a] + s.nb_count[a]; ++p)
+      if (s.nb[p] >= n || s.nb[p] == a)
+        fail("nb", "particle slot " + std::to_string(a) + " has an invalid neighbour");
+
+  step_ = s.step;
+  time_ = s.time;
+  top_ = s.top;
+  plate_force_ = s.plate_force;
+  plate_work_ = s.plate_work;
+  released_ = s.released;
+  damped_ = s.damped;
+  rebuilds_ = s.neighbour_rebuilds;
+  forces_stale_ = s.forces_stale;
+  times_ = s.stage_times;
+  x_ = s.x, y_ = s.y, z_ = s.z;
+  vx_ = s.vx, vy_ = s.vy, vz_ = s.vz;
+  fx_ = s.fx, fy_ = s.fy, fz_ = s.fz;
+  xb_ = s.xb, yb_ = s.yb, zb_ = s.zb;
+  damped_per_particle_ = s.damped_per_particle;
+  intact_ = s.intact;
+  intact_count_ = intact;
+  link_count_ = s.link_count;
+  for (std::uint32_t a = 0; a < n; ++a)
+    for (std::uint32_t l = link_start_[a]; l < link_start_[a + 1]; ++l) set_link(l, a, s.link_bond[l]);
+  nb_start_ = s.nb_start;
+  nb_count_ = s.nb_count;
+  nb_ = s.nb;
+  events_.clear();
+  last_move_ = {};
 }
 
 Vec3 System::position(std::size_t sample_index) const {

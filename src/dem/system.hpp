@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/vec3.hpp"
@@ -76,6 +77,41 @@ struct StageTimes {
   double neighbours = 0.0, integrate = 0.0, forces = 0.0, plates = 0.0, breaks = 0.0;
 };
 
+// The farthest any particle moved in the last step, relative to its own radius (1); a non-finite
+// position or velocity counts as an infinite move. Ties go to the lower storage index.
+struct StepMove {
+  double fraction = 0.0;          // |dt v| / r (1)
+  std::size_t sample_index = 0;  // the particle
+};
+
+// Everything that changes while the engine steps, in storage order: with the same sample and
+// Params it fixes every later step bit for bit. That includes what only fixes the order of
+// floating-point sums: each particle's link order (breaks permute it), the neighbour list with its
+// slice capacities, and the positions the list was built at (they decide the next rebuild).
+// Constants (masses, anchors, bond constants, storage order) are rebuilt from the sample.
+struct EngineState {
+  std::uint64_t step = 0;
+  double time = 0.0;  // s
+  PlateMotion top;
+  std::array<double, 3> plate_force{};  // N, per Plate
+  double plate_work = 0.0, released = 0.0, damped = 0.0;  // mJ
+  std::uint64_t neighbour_rebuilds = 0;
+  bool forces_stale = false;
+  StageTimes stage_times;                        // s, carried over so reports cover the whole run
+  std::vector<std::uint32_t> sample_of_storage;  // the storage order it was saved in (checked)
+  std::vector<double> x, y, z;                   // mm
+  std::vector<double> vx, vy, vz;                // mm/s
+  std::vector<double> fx, fy, fz;                // N: velocity Verlet's first half-kick needs them
+  std::vector<double> xb, yb, zb;                // mm: positions at the last neighbour-list build
+  std::vector<double> damped_per_particle;       // mJ
+  std::vector<std::uint8_t> intact;              // per bond: 1 intact, 0 broken
+  std::vector<std::uint32_t> link_count;         // per particle: intact links at the slice start
+  std::vector<std::uint32_t> link_bond;          // per link slot: its bond (slot order = sum order)
+  std::vector<std::uint32_t> nb_start;           // n + 1: neighbour slice starts (capacities)
+  std::vector<std::uint32_t> nb_count;           // per particle: used part of its slice
+  std::vector<std::uint32_t> nb;                 // neighbour slices, unused slots zero
+};
+
 class System {
  public:
   System(const Sample& sample, const Params& params);
@@ -123,6 +159,19 @@ class System {
   void set_velocity(std::size_t sample_index, const Vec3& v);
   // Breaks one intact bond now, exactly as a break found in a force pass (logged, energy released).
   void break_bond(std::size_t bond);
+  // Checkpoints: the evolving state, and its restoration into an engine built from the same
+  // sample and Params. restore_state checks every size, index and invariant first and throws
+  // InputError (naming `source` and the field) without changing the engine if one fails.
+  EngineState save_state() const;
+  void restore_state(const EngineState& state, const std::string& source);
+
+  // The largest move of the last step relative to the particle's radius: the run stops as
+  // unstable when a particle jumps a sizeable part of itself in one step.
+  const StepMove& last_step_move() const { return last_move_; }
+  // Radius (mm) and mass (t) of a particle, by sample index.
+  double radius(std::size_t sample_index) const { return radius_[storage_of_sample_[sample_index]]; }
+  double mass(std::size_t sample_index) const { return mass_[storage_of_sample_[sample_index]]; }
+
   // FNV-1a hash of positions and velocities in sample order: equal states, equal hashes.
   std::uint64_t state_hash() const;
   double bond_extension(std::size_t bond) const;
@@ -144,13 +193,19 @@ class System {
   void compute_forces(double half_dt);
   template <bool damped>
   void compute_forces_impl(double half_dt);
+  struct DriftResult {
+    double max_d2 = 0.0;  // mm^2: largest squared displacement since the last list build
+    double move2 = 0.0;   // 1: largest (|dt v| / r)^2 of this step (inf when non-finite)
+    std::uint32_t mover = 0;  // storage index reaching it
+  };
   template <bool damped>
-  double kick_drift(double dt);
+  DriftResult kick_drift(double dt);
   void rebuild_neighbours();
   void update_plate_forces();
   void apply_breaks();
   void break_one(std::uint32_t bond);
   bool bonded_intact(std::uint32_t a, std::uint32_t b) const;
+  void set_link(std::uint32_t l, std::uint32_t a, std::uint32_t b);
   void add_neighbour(std::uint32_t a, std::uint32_t b);
 
   Params params_;
@@ -200,6 +255,7 @@ class System {
   // Small systems run on one thread: a parallel region costs more than their whole step.
   bool parallel_ = false;
   StageTimes times_;
+  StepMove last_move_;
 };
 
 template <class PairFn>
