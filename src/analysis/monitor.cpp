@@ -126,4 +126,27 @@ MonitorSummary Monitor::summary() const {
   return s;
 }
 
+nlohmann::json to_json(const MonitorSummary& s) {
+  const auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  nlohmann::json j = {{"samples", s.samples}};
+  if (s.warning) {
+    const auto& w = *s.warning;
+    j["warning"] = {{"sample", w.sample},
+                    {"strain", w.strain},
+                    {"x_p", {{"value", w.x_p}, {"error", w.x_p_error}}},
+                    {"Erate_max", {{"value", w.Erate_max}, {"error", w.Erate_max_error}}},
+                    {"x_c_predicted", {w.x_c.low, w.x_c.high}},
+                    {"E_max_predicted", {w.E_max.low, w.E_max.high}}};
+  } else {
+    j["warning"] = nullptr;
+  }
+  j["force_peaked_before_warning"] = s.force_peaked_before_warning;
+  j["x_c_observed"] = optional(s.x_c);
+  j["E_max_observed"] = optional(s.E_max);
+  j["lead"] = optional(s.lead);
+  j["x_c_held"] = optional(s.x_c_held);
+  j["E_max_held"] = optional(s.E_max_held);
+  return j;
+}
+
 }  // namespace rupture::analysis

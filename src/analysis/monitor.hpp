@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
@@ -56,6 +57,10 @@ struct MonitorSummary {
   std::optional<bool> x_c_held, E_max_held;  // observed values inside the predicted intervals
   bool force_peaked_before_warning = false;  // the force maximum passed before any confirmation
 };
+
+// The warning (or null) and the outcome, in the input's strain and energy units: the "monitor"
+// block of `rupture monitor --json` and of a run's run.json.
+nlohmann::json to_json(const MonitorSummary& summary);
 
 class Monitor {
  public:

@@ -195,21 +195,8 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       nlohmann::json j = {{"tool", "rupture monitor"}, {"version", version_string},
                           {"inputs", {{"file", o->file}, {"window", o->monitor.window}, {"drop", o->monitor.drop},
                                       {"confirm", o->monitor.confirm}, {"alpha_range", {o->monitor.alpha_low, o->monitor.alpha_high}}}},
-                          {"units", {{"strain", columns.strain_unit}, {"force", columns.force_unit}, {"energy", columns.energy_unit}}},
-                          {"samples", s.samples}};
-      if (s.warning) {
-        const auto& w = *s.warning;
-        j["warning"] = {{"sample", w.sample}, {"strain", w.strain}, {"x_p", {{"value", w.x_p}, {"error", w.x_p_error}}},
-                        {"Erate_max", {{"value", w.Erate_max}, {"error", w.Erate_max_error}}},
-                        {"x_c_predicted", {w.x_c.low, w.x_c.high}}, {"E_max_predicted", {w.E_max.low, w.E_max.high}}};
-      } else {
-        j["warning"] = nullptr;
-      }
-      j["x_c_observed"] = s.x_c ? nlohmann::json(*s.x_c) : nlohmann::json(nullptr);
-      j["E_max_observed"] = s.E_max ? nlohmann::json(*s.E_max) : nlohmann::json(nullptr);
-      j["lead"] = s.lead ? nlohmann::json(*s.lead) : nlohmann::json(nullptr);
-      j["x_c_held"] = s.x_c_held ? nlohmann::json(*s.x_c_held) : nlohmann::json(nullptr);
-      j["E_max_held"] = s.E_max_held ? nlohmann::json(*s.E_max_held) : nlohmann::json(nullptr);
+                          {"units", {{"strain", columns.strain_unit}, {"force", columns.force_unit}, {"energy", columns.energy_unit}}}};
+      j.update(analysis::to_json(s));
       io::write_json_atomically(o->json, j);
     }
     (void)exit_code;

@@ -185,6 +185,20 @@ const std::vector<Key>& schema() {
         number_key("stop", "max_steps", "steps", "stop after this many steps", &RunConfig::max_steps));
     k.push_back(number_key("stop", "separation_check_interval", "steps", "steps between connectivity checks",
                            &RunConfig::separation_check_interval));
+    k.push_back(number_key("stop", "load_free_fraction", "1",
+                           "also separated when the mean top-plate force stays below this fraction of its peak "
+                           "(0: connectivity only)",
+                           &RunConfig::load_free_fraction));
+    k.push_back(number_key("stop", "load_free_strain", "%", "over this much strain (the load-free rule)",
+                           &RunConfig::load_free_strain));
+    k.push_back(number_key("monitor", "enabled", "",
+                           "run the live precursor monitor on every curves.csv row; its warning goes to run.json",
+                           &RunConfig::monitor));
+    k.push_back(number_key("monitor", "window", "rows", "rows per causal cubic fit", &RunConfig::monitor_window));
+    k.push_back(number_key("monitor", "drop", "1", "fraction by which the energy rate must fall below its maximum",
+                           &RunConfig::monitor_drop));
+    k.push_back(number_key("monitor", "confirm", "rows", "consecutive rows below that level that confirm the maximum",
+                           &RunConfig::monitor_confirm));
     k.push_back(number_key("output", "folder", "", "output folder (relative to the working directory)",
                            &RunConfig::output_folder));
     k.push_back(number_key("output", "interval", "steps", "steps between rows of curves.csv",
@@ -262,6 +276,14 @@ void validate(const RunConfig& c, const std::string& file) {
   check(c.max_steps > 0, at("stop.max_steps"), "must be > 0", "use e.g. 1e7");
   check(c.separation_check_interval > 0, at("stop.separation_check_interval"), "must be > 0 (steps)",
         "use e.g. 1000");
+  check(c.load_free_fraction >= 0 && c.load_free_fraction < 1, at("stop.load_free_fraction"), "must be in [0, 1)",
+        "use e.g. 0.1, or 0 to rely on connectivity alone");
+  check(c.load_free_strain > 0, at("stop.load_free_strain"), "must be > 0 (%)", "use e.g. 0.2");
+  check(c.monitor_window >= 7 && c.monitor_window <= 100000, at("monitor.window"), "must be between 7 and 100000 (rows)",
+        "use e.g. 41");
+  check(c.monitor_drop > 0 && c.monitor_drop < 1, at("monitor.drop"), "must be in (0, 1)", "use e.g. 0.03");
+  check(c.monitor_confirm >= 1 && c.monitor_confirm <= 100000, at("monitor.confirm"), "must be between 1 and 100000 (rows)",
+        "use e.g. 10");
   check(c.output_interval > 0, at("output.interval"), "must be > 0 (steps)", "use e.g. 1000");
   check(c.snapshot_interval >= 0, at("output.snapshot_interval"), "must be >= 0 (steps)",
         "use 0 for no snapshots");

@@ -48,6 +48,15 @@ struct RunConfig {
   double max_strain = 100.0;                      // %
   std::int64_t max_steps = 100'000'000;           // steps
   std::int64_t separation_check_interval = 1000;  // steps
+  // The load-free rule: also separated once the mean plate force has stayed below this fraction
+  // of its peak over `load_free_strain` of pulling (0 turns the rule off; see loading/separation).
+  double load_free_fraction = 0.1;  // 1
+  double load_free_strain = 0.2;    // %
+  // [monitor] the live precursor warning, fed every curves.csv row (analysis/monitor)
+  bool monitor = true;
+  std::int64_t monitor_window = 41;   // rows per causal cubic fit
+  double monitor_drop = 0.03;         // 1: fall of ℰ below its running maximum
+  std::int64_t monitor_confirm = 10;  // rows below that level that confirm the maximum
   // [output]
   std::string output_folder = "run";    // relative to the working directory
   std::int64_t output_interval = 1000;  // steps between curve rows

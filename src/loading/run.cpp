@@ -14,6 +14,7 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/vtk.hpp"
+#include "analysis/monitor.hpp"
 #include "loading/ramp.hpp"
 #include "loading/separation.hpp"
 #include "rupture/version.hpp"
@@ -231,6 +232,9 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   io::write_json_atomically(folder / "run.json", report);
 
   RunSummary summary;
+  analysis::Monitor monitor({.window = std::size_t(config.monitor_window),
+                             .drop = config.monitor_drop,
+                             .confirm = std::size_t(config.monitor_confirm)});
   double max_work = 0.0;
   const auto strain_now = [&] { return 100.0 * system.top_plate().displacement / l0; };
   const auto record = [&] {
@@ -243,6 +247,12 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
                 system.damping_energy(), double(system.intact_bonds()),
                 double(system.bond_count() - system.intact_bonds()), double(e.contacts)});
     curves.flush();
+    if (config.monitor) {
+      if (const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic))
+        fmt::print("monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the force "
+                   "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
+                   warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
+    }
     max_work = std::max(max_work, std::abs(w));
     const double error = std::abs(w - total);
     if (std::isfinite(error)) {
@@ -271,8 +281,10 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
 
   Progress progress("run", double(plan.estimated_steps));
   UnionFind sets;
+  LoadFreeWatch load_free(config.load_free_fraction, config.load_free_strain);
   bool separated_yet = false, stable = record();
   double separation_strain = 0.0;
+  std::string separation_rule;
   std::uint64_t last_recorded = 0;
   while (stable) {
     const std::uint64_t n = system.steps_done();
@@ -281,6 +293,7 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
       break;
     }
     system.step(plan.dt, ramp.at(double(n + 1) * plan.dt));
+    load_free.add(system.force_top());
     auto& events = system.break_events();
     if (!events.empty()) {
       for (const auto& ev : events)
@@ -298,9 +311,13 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
       if (!stable) break;
     }
     if (config.snapshot_interval > 0 && done % std::uint64_t(config.snapshot_interval) == 0) snapshot();
-    if (!separated_yet && done % std::uint64_t(config.separation_check_interval) == 0 &&
-        separated(system, sets)) {
-      separated_yet = true;
+    if (!separated_yet && done % std::uint64_t(config.separation_check_interval) == 0) {
+      const bool broken = system.intact_bonds() < system.bond_count();
+      if (separated(system, sets))
+        separation_rule = "connectivity";
+      else if (load_free.check(strain, broken))
+        separation_rule = "load_free";
+      separated_yet = !separation_rule.empty();
       separation_strain = strain;
     }
     if (separated_yet && strain >= separation_strain + config.extra_strain) {
@@ -345,7 +362,10 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   report["final_strain_percent"] = summary.strain;
   report["separation_strain_percent"] =
       separated_yet ? nlohmann::json(separation_strain) : nlohmann::json(nullptr);
+  report["separation_rule"] = separated_yet ? nlohmann::json(separation_rule) : nlohmann::json(nullptr);
   report["broken_bonds"] = summary.broken_bonds;
+  report["monitor"] = config.monitor ? analysis::to_json(monitor.summary()) : nlohmann::json(nullptr);
+  if (config.monitor) report["monitor"]["units"] = {{"strain", "%"}, {"force", "N"}, {"energy", "mJ"}};
   report["wall_s"] = summary.wall_seconds;
   report["particle_steps_per_s"] =
       double(summary.steps) * double(sample.size()) / std::max(summary.wall_seconds, 1e-9);

@@ -1,8 +1,12 @@
-// loading/separation: has the sample come apart? A union-find over intact bonds and touching
-// contacts asks whether any particle glued to the top plate is still connected to one glued to the
-// bottom plate. Not: when to ask (the run loop asks every stop.separation_check_interval steps).
+// loading/separation: has the sample come apart? Two rules. Connectivity: a union-find over intact
+// bonds and touching contacts asks whether any particle glued to the top plate is still connected to
+// one glued to the bottom plate. Load-free: after bonds have broken, the mean top-plate force has
+// stayed below a fraction of its peak over a strain window; it ends runs where a few slack bond
+// chains keep the halves connected while they carry no load. Not: when to ask (the run loop asks
+// every stop.separation_check_interval steps).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <numeric>
 #include <vector>
@@ -50,5 +54,50 @@ inline bool separated(const dem::System& system, UnionFind& sets) {
     if (system.plate_of_storage(a) == dem::plate_top && bottom_roots[sets.find(a)]) return false;
   return true;
 }
+
+// The load-free rule. Fed the top-plate force every step; asked at every check, it compares the
+// mean force over the interval since the last check with the largest such mean so far (interval
+// means, so that one ringing step neither triggers nor resets it).
+class LoadFreeWatch {
+ public:
+  // Everything that carries over between checks (a checkpoint stores it to resume exactly).
+  struct State {
+    double sum = 0.0;  // N, top-plate force summed over the current interval
+    std::uint64_t count = 0;
+    double last_strain = 0.0;  // %, end of the previous interval
+    double peak = 0.0;         // N, largest interval mean so far
+    bool load_free = false;    // in a load-free stretch
+    double free_since = 0.0;   // %, where it began
+  };
+
+  LoadFreeWatch(double fraction, double window_strain) : fraction_(fraction), window_(window_strain) {}
+  LoadFreeWatch(double fraction, double window_strain, const State& state)
+      : fraction_(fraction), window_(window_strain), s_(state) {}
+  const State& state() const { return s_; }
+  void add(double force) {
+    s_.sum += force;
+    ++s_.count;
+  }
+  // `strain` (%) at the end of the interval; `broken` tells whether any bond has broken yet.
+  bool check(double strain, bool broken) {
+    const double mean = s_.count > 0 ? s_.sum / double(s_.count) : 0.0;
+    s_.sum = 0.0;
+    s_.count = 0;
+    const double interval_start = s_.last_strain;
+    s_.last_strain = strain;
+    s_.peak = std::max(s_.peak, mean);
+    if (fraction_ <= 0.0 || !broken || s_.peak <= 0.0 || mean >= fraction_ * s_.peak) {
+      s_.load_free = false;
+      return false;
+    }
+    if (!s_.load_free) s_.free_since = interval_start;
+    s_.load_free = true;
+    return strain - s_.free_since >= window_;
+  }
+
+ private:
+  double fraction_, window_;
+  State s_;
+};
 
 }  // namespace rupture::loading
