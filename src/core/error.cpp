@@ -1,12 +1,30 @@
 #include "core/error.hpp"
 
+#include <fmt/format.h>
+
 namespace rupture {
 
 namespace {
+// Messages quote the user's input, which may hold any byte: control characters (a newline in a
+// quoted TOML key, a NUL in a binary file) are written as \xNN so that the message stays one line
+// and what() is not cut short.
+std::string one_line(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\t') || byte == 0x7f)
+      out += fmt::format("\\x{:02x}", byte);
+    else
+      out += c;
+  }
+  return out;
+}
+
 std::string compose(const std::string& where, const std::string& problem, const std::string& fix) {
   std::string message = where.empty() ? problem : where + ": " + problem;
   if (!fix.empty()) message += "; " + fix;
-  return message;
+  return one_line(message);
 }
 }  // namespace
 
