@@ -9,12 +9,11 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/analysis.hpp"
+#include "analysis/curve_file.hpp"
 #include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
-#include "io/csv.hpp"
-#include "rupture/version.hpp"
 
 namespace rupture::cli {
 
@@ -67,23 +66,6 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   fmt::print("  wrote {}\n", output.string());
 }
 
-nlohmann::json inputs_json(const AnalyzeOptions& o, const std::string& breaks_used) {
-  const auto& a = o.analysis;
-  return {{"curves", o.curves},
-          {"breaks", breaks_used.empty() ? nlohmann::json(nullptr) : nlohmann::json(breaks_used)},
-          {"columns", {{"strain", o.columns.strain}, {"force", o.columns.force}, {"energy", o.columns.energy}}},
-          {"scales", {{"strain", o.columns.strain_scale}, {"force", o.columns.force_scale}, {"energy", o.columns.energy_scale}}},
-          {"filter", o.filter},
-          {"cutoff", a.filter.cutoff},
-          {"butterworth_order", a.filter.butterworth_order},
-          {"savgol_window", a.filter.savgol_window},
-          {"savgol_order", a.filter.savgol_order},
-          {"derivative_window", a.derivative_window},
-          {"peak_drop", a.peak.drop},
-          {"delay_window_drop", a.delay.window_drop},
-          {"grid_points", a.delay.grid_points}};
-}
-
 }  // namespace
 
 void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns) {
@@ -99,28 +81,18 @@ void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns) {
 }
 
 AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
-  const auto* o = &options;
-  const auto& a = o->analysis;
-  const std::filesystem::path curves_path(o->curves);
-  const auto table = io::read_csv(curves_path);
-  const auto curve = analysis::select_curve(table, o->columns);
-  std::string breaks_path = o->breaks;
-  if (breaks_path.empty() && !o->no_breaks) {
-    const auto beside = curves_path.parent_path() / "breaks.csv";
-    if (std::filesystem::exists(beside)) breaks_path = beside.string();
-  }
-  std::vector<double> break_strains;
-  if (!breaks_path.empty() && !o->no_breaks) {
-    break_strains = analysis::select_break_strains(io::read_csv(breaks_path), o->columns.strain_scale);
-  }
-  const auto result = analysis::analyze_curve(curve, a, break_strains);
-  nlohmann::json document = {{"tool", "rupture analyze"}, {"version", version_string},
-                             {"inputs", inputs_json(*o, breaks_path)}};
-  document.update(analysis::to_json(result));
-  const std::filesystem::path output = o->output.empty() ? curves_path.parent_path() / "analysis.json" : std::filesystem::path(o->output);
-  io::write_json_atomically(output, document);
-  print_summary(result, output);
-  return {result, output};
+  analysis::CurveFileInputs inputs;
+  inputs.curves = options.curves;
+  inputs.breaks = options.breaks;
+  inputs.no_breaks = options.no_breaks;
+  inputs.columns = options.columns;
+  inputs.options = options.analysis;
+  const auto analysed = analysis::analyze_curve_file(inputs, "rupture analyze");
+  const std::filesystem::path output =
+      options.output.empty() ? inputs.curves.parent_path() / "analysis.json" : std::filesystem::path(options.output);
+  io::write_json_atomically(output, analysed.document);
+  print_summary(analysed.result, output);
+  return {analysed.result, output};
 }
 
 void add_analyze_command(CLI::App& app, int& exit_code) {

@@ -1,0 +1,61 @@
+#include "analysis/curve_file.hpp"
+
+#include "io/csv.hpp"
+#include "rupture/version.hpp"
+
+namespace rupture::analysis {
+
+namespace {
+
+// The filter as `rupture analyze --filter` names it.
+const char* filter_option(FilterKind kind) {
+  switch (kind) {
+    case FilterKind::butterworth:
+      return "butterworth";
+    case FilterKind::savitzky_golay:
+      return "savgol";
+    case FilterKind::none:
+      return "none";
+  }
+  return "?";
+}
+
+nlohmann::json inputs_json(const CurveFileInputs& in, const std::string& breaks_used) {
+  const auto& a = in.options;
+  const auto& c = in.columns;
+  return {{"curves", in.curves.string()},
+          {"breaks", breaks_used.empty() ? nlohmann::json(nullptr) : nlohmann::json(breaks_used)},
+          {"columns", {{"strain", c.strain}, {"force", c.force}, {"energy", c.energy}}},
+          {"scales", {{"strain", c.strain_scale}, {"force", c.force_scale}, {"energy", c.energy_scale}}},
+          {"filter", filter_option(a.filter.kind)},
+          {"cutoff", a.filter.cutoff},
+          {"butterworth_order", a.filter.butterworth_order},
+          {"savgol_window", a.filter.savgol_window},
+          {"savgol_order", a.filter.savgol_order},
+          {"derivative_window", a.derivative_window},
+          {"peak_drop", a.peak.drop},
+          {"delay_window_drop", a.delay.window_drop},
+          {"grid_points", a.delay.grid_points}};
+}
+
+}  // namespace
+
+CurveFileAnalysis analyze_curve_file(const CurveFileInputs& in, const std::string& tool) {
+  const auto table = io::read_csv(in.curves);
+  const auto curve = select_curve(table, in.columns);
+  std::string breaks_path = in.no_breaks ? std::string() : in.breaks;
+  if (breaks_path.empty() && !in.no_breaks) {
+    const auto beside = in.curves.parent_path() / "breaks.csv";
+    if (std::filesystem::exists(beside)) breaks_path = beside.string();
+  }
+  std::vector<double> break_strains;
+  if (!breaks_path.empty())
+    break_strains = select_break_strains(io::read_csv(breaks_path), in.columns.strain_scale);
+  CurveFileAnalysis out;
+  out.result = analyze_curve(curve, in.options, break_strains);
+  out.document = {{"tool", tool}, {"version", version_string}, {"inputs", inputs_json(in, breaks_path)}};
+  out.document.update(to_json(out.result));
+  return out;
+}
+
+}  // namespace rupture::analysis

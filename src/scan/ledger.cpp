@@ -1,0 +1,242 @@
+#include "scan/ledger.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <chrono>
+
+#include "analysis/curve_file.hpp"
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "loading/run.hpp"
+#include "rupture/version.hpp"
+#include "scan/results.hpp"
+
+namespace rupture::scan {
+
+namespace {
+
+// An exclusive flock on a file, taken without waiting; the kernel drops it when the holder exits,
+// however it exits, so a killed scan never leaves a point locked.
+class PointLock {
+ public:
+  explicit PointLock(const std::filesystem::path& file)
+      : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+    if (fd_ < 0) throw RunError(fmt::format("cannot open the lock file {}", file.string()));
+    held_ = ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
+  }
+  ~PointLock() { ::close(fd_); }
+  PointLock(const PointLock&) = delete;
+  PointLock& operator=(const PointLock&) = delete;
+  bool held() const { return held_; }
+
+ private:
+  int fd_;
+  bool held_ = false;
+};
+
+int count_attempts(const std::filesystem::path& folder) {
+  int n = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+    if (entry.is_directory() && entry.path().filename().string().rfind("attempt-", 0) == 0) ++n;
+  return n;
+}
+
+// A fresh attempt folder: the first attempt-N that does not exist yet (created atomically by mkdir).
+std::filesystem::path new_attempt(const std::filesystem::path& folder) {
+  for (int n = 1;; ++n) {
+    const auto attempt = folder / fmt::format("attempt-{}", n);
+    if (std::filesystem::create_directory(attempt)) return attempt;
+  }
+}
+
+nlohmann::json comparable(nlohmann::json config) {
+  config["run"].erase("threads");  // threads never change results (tested in dem/)
+  return config;
+}
+
+void put(nlohmann::json& row, const std::string& name, const std::optional<analysis::Measured>& m) {
+  if (!m) return;
+  row[name] = m->value;
+  row[name + "_err"] = m->error;
+}
+
+void add_analysis(nlohmann::json& row, const analysis::AnalysisResult& r) {
+  put(row, "x_c", r.x_c);
+  put(row, "F_c", r.F_c);
+  put(row, "x_p", r.x_p);
+  put(row, "Erate_max", r.Erate_max);
+  put(row, "x_m", r.x_m);
+  put(row, "E_max", r.E_max);
+  if (r.delay) {
+    row["delta_x"] = r.delay->mean;
+    row["delta_x_sd"] = r.delay->sd;
+    row["delta_x_map"] = r.delay->map;
+    row["delta_x_lo68"] = r.delay->ci68_low;
+    row["delta_x_hi68"] = r.delay->ci68_high;
+    row["delta_x_lo95"] = r.delay->ci95_low;
+    row["delta_x_hi95"] = r.delay->ci95_high;
+  }
+  put(row, "Gamma", r.Gamma);
+  put(row, "A_r", r.A_r);
+  if (r.alpha.alpha) row["alpha"] = *r.alpha.alpha;
+  if (r.mechanism) row["class"] = analysis::to_string(r.mechanism->mechanism);
+  row["accepted"] = r.accepted ? 1 : 0;
+  if (!r.accepted) row["why"] = r.rejection;
+}
+
+nlohmann::json base_row(const Point& point) {
+  return {{"point", point.index},
+          {"k_n", point.k_n},
+          {"b_d", point.b_d},
+          {"ramp_steps", point.ramp_steps},
+          {"max_strain", point.max_strain}};
+}
+
+}  // namespace
+
+const char* to_string(PointState state) {
+  switch (state) {
+    case PointState::pending:
+      return "pending";
+    case PointState::partial:
+      return "partial";
+    case PointState::running:
+      return "running";
+    case PointState::finished:
+      return "finished";
+  }
+  return "?";
+}
+
+std::filesystem::path point_folder(const Plan& plan, const Point& point) {
+  return plan.folder / "points" / point.name;
+}
+
+std::optional<nlohmann::json> read_result(const Plan& plan, const Point& point) {
+  const auto file = point_folder(plan, point) / "result.json";
+  if (!std::filesystem::exists(file)) return std::nullopt;
+  try {
+    return nlohmann::json::parse(io::read_text_file(file));
+  } catch (const nlohmann::json::exception& e) {
+    // Cannot happen through the ledger (the file appears whole); a hand-edited file is bad input.
+    throw InputError(file.string(), std::string("unreadable result: ") + e.what(),
+                     "delete it to run the point again");
+  }
+}
+
+PointStatus point_status(const Plan& plan, const Point& point) {
+  PointStatus s;
+  const auto folder = point_folder(plan, point);
+  if (!std::filesystem::exists(folder)) return s;
+  s.attempts = count_attempts(folder);
+  if (const auto result = read_result(plan, point)) {
+    s.state = PointState::finished;
+    s.status = result->value("status", "");
+    s.why = result->at("row").value("why", "");
+    return s;
+  }
+  const PointLock probe(folder / "lock");
+  s.state = !probe.held() ? PointState::running : s.attempts > 0 ? PointState::partial : PointState::pending;
+  s.status = to_string(s.state);
+  return s;
+}
+
+void check_result_matches(const Plan& plan, const Point& point, const nlohmann::json& result) {
+  const auto now = comparable(loading::to_json(point_config(plan, point, 1)));
+  if (result.contains("config") && comparable(result.at("config")) == now) return;
+  throw InputError((point_folder(plan, point) / "result.json").string(),
+                   "this point was computed with a different run config than the scan now gives it",
+                   "restore the scan config and its base config, or give [scan] output a new folder");
+}
+
+std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, const Sample& sample,
+                                        int threads) {
+  const auto folder = point_folder(plan, point);
+  std::filesystem::create_directories(folder);
+  const PointLock lock(folder / "lock");
+  if (!lock.held()) return std::nullopt;
+  if (auto done = read_result(plan, point)) return done;  // finished while we were looking
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto attempt = new_attempt(folder);
+  const loading::RunConfig config = point_config(plan, point, threads);
+  const std::string command = point_command(plan, point, threads);
+  nlohmann::json row = base_row(point);
+  std::string status = status::error, why;
+  try {
+    const auto summary = loading::run_simulation(config, sample, attempt, command);
+    row["stop_reason"] = summary.stop_reason;
+    row["steps"] = summary.steps;
+    row["final_strain"] = summary.strain;
+    row["broken_bonds"] = summary.broken_bonds;
+    const bool separated = summary.stop_reason == "separated";
+    status = separated ? status::ok : status::no_separation;
+    if (!separated)
+      why = fmt::format("not separated at the {} stop (strain {:.4g} %, {} steps)", summary.stop_reason,
+                        summary.strain, summary.steps);
+    analysis::CurveFileInputs inputs;
+    inputs.curves = attempt / "curves.csv";
+    try {
+      auto analysed = analysis::analyze_curve_file(inputs, "rupture scan");
+      io::write_json_atomically(attempt / "analysis.json", analysed.document);
+      add_analysis(row, analysed.result);
+    } catch (const InputError& e) {
+      if (separated) status = status::error;
+      why = (why.empty() ? "" : why + "; ") + "analysis failed: " + e.what();
+    }
+  } catch (const RunError& e) {
+    status = status::unstable;
+    why = e.what();
+  } catch (const std::exception& e) {
+    status = status::error;
+    why = e.what();
+  }
+  // dt as the run chose it (run.json is written before the first step).
+  if (std::filesystem::exists(attempt / "run.json")) {
+    const auto run = nlohmann::json::parse(io::read_text_file(attempt / "run.json"));
+    row["dt"] = run.at("plan").at("dt_s");
+    if (status == status::unstable && run.value("stop_reason", "") != "unstable")
+      status = status::error;  // e.g. disk full
+    if (status == status::unstable) {
+      row["stop_reason"] = run.value("stop_reason", "unstable");
+      row["steps"] = run.value("steps", std::uint64_t(0));
+      row["final_strain"] = run.value("final_strain_percent", 0.0);
+      row["broken_bonds"] = run.value("broken_bonds", std::uint64_t(0));
+    }
+  }
+  row["status"] = status;
+  if (status != status::ok) {
+    row["accepted"] = 0;
+    row["why"] = why;
+  }
+  row["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  nlohmann::json result = {
+      {"tool", "rupture scan"},
+      {"version", version_string},
+      {"point", {{"index", point.index}, {"k_n_N_per_mm", point.k_n}, {"b_d_mm", point.b_d}}},
+      {"attempt", attempt.filename().string()},
+      {"command", command},
+      {"config", loading::to_json(config)},
+      {"status", status},
+      {"row", row}};
+  io::write_json_atomically(folder / "result.json", result);  // last: the point is now finished
+  return result;
+}
+
+nlohmann::json result_row(const Plan& plan, const Point& point) {
+  if (const auto result = read_result(plan, point)) {
+    nlohmann::json row = result->at("row");
+    row["point"] = point.index;  // the plan's order, which a longer scan may have changed
+    return row;
+  }
+  nlohmann::json row = base_row(point);
+  const PointStatus s = point_status(plan, point);
+  row["status"] = s.state == PointState::running ? status::running : status::pending;
+  return row;
+}
+
+}  // namespace rupture::scan

@@ -1,0 +1,385 @@
+#include "scan/scan.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace rupture::scan {
+
+namespace {
+
+// One [section] of the scan config: reads known keys, rejects unknown ones with the list of valid ones.
+class Section {
+ public:
+  Section(const toml::table& root, std::string name, std::vector<std::string> keys, const std::string& source)
+      : name_(std::move(name)), keys_(std::move(keys)), source_(source) {
+    if (const auto* node = root.get(name_)) {
+      table_ = node->as_table();
+      if (table_ == nullptr) throw InputError(where(""), "expects a table", "write [" + name_ + "]");
+      for (const auto& [key, value] : *table_) {
+        (void)value;
+        if (std::find(keys_.begin(), keys_.end(), std::string(key.str())) == keys_.end())
+          throw InputError(where(std::string(key.str())), "unknown key", "valid keys: " + valid());
+      }
+    }
+  }
+  const toml::node* get(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
+  std::string where(const std::string& key) const {
+    return source_ + ": " + name_ + (key.empty() ? "" : "." + key);
+  }
+  double number(const std::string& key, double fallback) const {
+    const auto* node = get(key);
+    if (node == nullptr) return fallback;
+    if (auto v = node->value<double>()) return *v;
+    throw InputError(where(key), "expects a number", "write e.g. 1e3 (no quotes)");
+  }
+  std::int64_t integer(const std::string& key, std::int64_t fallback) const {
+    const double v = number(key, double(fallback));
+    if (v != std::floor(v) || std::abs(v) > 9e18)
+      throw InputError(where(key), fmt::format("{} is not a whole number", v), "write e.g. 10000");
+    return std::int64_t(v);
+  }
+  std::string text(const std::string& key, const std::string& fallback) const {
+    const auto* node = get(key);
+    if (node == nullptr) return fallback;
+    if (auto v = node->value<std::string>()) return *v;
+    throw InputError(where(key), "expects a string", "put the value in double quotes");
+  }
+
+ private:
+  std::string valid() const {
+    std::string list;
+    for (const auto& k : keys_) list += (list.empty() ? "" : ", ") + name_ + "." + k;
+    return list;
+  }
+  std::string name_;
+  std::vector<std::string> keys_;
+  std::string source_;
+  const toml::table* table_ = nullptr;
+};
+
+double round6(double value) { return std::stod(fmt::format("{:.6g}", value)); }
+
+// A TOML value as the text of a --set override.
+std::string toml_text(const toml::node& node) {
+  if (auto s = node.value_exact<std::string>()) return "\"" + *s + "\"";
+  if (auto b = node.value_exact<bool>()) return *b ? "true" : "false";
+  if (auto i = node.value_exact<std::int64_t>()) return fmt::format("{}", *i);
+  if (auto d = node.value_exact<double>()) return fmt::format("{}", *d);
+  if (const auto* array = node.as_array()) {
+    std::string text = "[";
+    for (std::size_t i = 0; i < array->size(); ++i) text += (i ? ", " : "") + toml_text(*array->get(i));
+    return text + "]";
+  }
+  throw InputError("[sample]", "a value that is not a string, number, boolean or array",
+                   "write it as in a run config");
+}
+
+LogRange read_range(const Section& grid, const std::string& key) {
+  const auto* node = grid.get(key);
+  const auto* table = node ? node->as_table() : nullptr;
+  if (table == nullptr)
+    throw InputError(grid.where(key), "expects { from = ..., to = ..., count = ... }",
+                     "write e.g. " + key + " = { from = 1e2, to = 1e5, count = 4 }");
+  LogRange range;
+  for (const auto& [k, v] : *table) {
+    const std::string name(k.str());
+    const auto value = v.value<double>();
+    if (!value || (name != "from" && name != "to" && name != "count"))
+      throw InputError(grid.where(key + "." + name), "unknown key or not a number",
+                       "use from, to (numbers) and count");
+    if (name == "from") range.from = *value;
+    if (name == "to") range.to = *value;
+    if (name == "count") range.count = int(*value);
+  }
+  if (!(range.from > 0) || !(range.to > 0) || range.count < 1 || range.count > 100000)
+    throw InputError(grid.where(key),
+                     fmt::format("from = {}, to = {}, count = {}", range.from, range.to, range.count),
+                     "give from > 0, to > 0 and a count of 1 or more");
+  return range;
+}
+
+}  // namespace
+
+ScanConfig load_scan_config(const std::filesystem::path& file) {
+  const std::string source = file.string();
+  toml::table root;
+  try {
+    root = toml::parse(io::read_text_file(file), source);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}:{}", source, e.source().begin.line), std::string(e.description()),
+                     "fix the TOML syntax");
+  }
+  for (const auto& [key, value] : root) {
+    (void)value;
+    const std::string name(key.str());
+    if (name != "scan" && name != "sample" && name != "grid" && name != "points" && name != "rules")
+      throw InputError(source + ": " + name, "unknown section",
+                       "sections: [scan], [sample], [grid], [[points]], [rules]");
+  }
+  ScanConfig c;
+  c.file = file;
+  const auto folder = file.parent_path();
+  const Section scan(root, "scan", {"base", "output", "set"}, source);
+  const std::string base = scan.text("base", "");
+  if (base.empty())
+    throw InputError(scan.where("base"), "missing", "name the run config, e.g. base = \"tissue.toml\"");
+  c.base = std::filesystem::path(base).is_relative() ? folder / base : std::filesystem::path(base);
+  c.output = scan.text("output", c.output.string());
+  if (const auto* set = scan.get("set")) {
+    const auto* array = set->as_array();
+    if (array == nullptr)
+      throw InputError(scan.where("set"), "expects an array of strings",
+                       "write set = [\"stop.max_steps=1e6\"]");
+    for (const auto& item : *array) {
+      const auto text = item.value<std::string>();
+      if (!text)
+        throw InputError(scan.where("set"), "expects strings", "write set = [\"stop.max_steps=1e6\"]");
+      c.set.push_back(*text);
+    }
+  }
+  if (const auto* sample = root.get("sample")) {
+    const auto* table = sample->as_table();
+    if (table == nullptr) throw InputError(source + ": sample", "expects a table", "write [sample]");
+    bool names_source = false;
+    for (const auto& [key, value] : *table) {
+      std::string name(key.str()), text = toml_text(value);
+      if (name == "file" && value.is_string()) {
+        const std::filesystem::path path = *value.value<std::string>();
+        text = "\"" + (path.is_relative() ? (folder / path).string() : path.string()) + "\"";
+      }
+      names_source = names_source || name == "file" || name == "preset" || name == "lattice";
+      c.sample.push_back("sample." + name + "=" + text);
+    }
+    // The scan's sample replaces the base config's: clear the sources it does not name.
+    if (names_source)
+      for (const char* other : {"file", "preset", "lattice"})
+        if (!table->contains(other))
+          c.sample.insert(c.sample.begin(), std::string("sample.") + other + "=\"\"");
+  }
+  const Section grid(root, "grid", {"k_n", "b_d"}, source);
+  if (grid.get("k_n") || grid.get("b_d")) {
+    c.grid_k_n = read_range(grid, "k_n");
+    c.grid_b_d = read_range(grid, "b_d");
+  }
+  if (const auto* points = root.get("points")) {
+    const auto* array = points->as_array();
+    if (array == nullptr)
+      throw InputError(source + ": points", "expects [[points]] entries",
+                       "write [[points]] k_n = 1e3 b_d = 0.05");
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      const auto* entry = array->get(i)->as_table();
+      if (entry == nullptr)
+        throw InputError(fmt::format("{}: points[{}]", source, i), "expects a table", "write [[points]]");
+      toml::table wrapper;
+      wrapper.insert("points", *entry);
+      const Section point(wrapper, "points", {"k_n", "b_d"}, source);
+      const double k = point.number("k_n", 0.0), b = point.number("b_d", 0.0);
+      if (!(k > 0) || !(b > 0))
+        throw InputError(fmt::format("{}: points[{}]", source, i), "needs k_n > 0 (N/mm) and b_d > 0 (mm)",
+                         "write k_n = 1e3 and b_d = 0.05");
+      c.listed.emplace_back(round6(k), round6(b));
+    }
+  }
+  if (!c.grid_k_n && c.listed.empty())
+    throw InputError(source, "no points", "add a [grid] with k_n and b_d ranges, or [[points]] entries");
+  const Section rules(root, "rules",
+                      {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_min_steps",
+                       "ramp_max_steps", "max_strain", "max_strain_factor", "max_strain_min"},
+                      source);
+  if (const auto* dt = rules.get("dt"); dt && !(dt->is_string() && rules.text("dt", "") == "auto")) {
+    c.dt = rules.number("dt", 0.0);
+    if (!(*c.dt > 0))
+      throw InputError(rules.where("dt"), "must be > 0 (s) or \"auto\"", "write dt = \"auto\"");
+  }
+  c.ramp = rules.text("ramp", c.ramp);
+  if (c.ramp != "scaled" && c.ramp != "base")
+    throw InputError(rules.where("ramp"), "'" + c.ramp + "' is not a ramp rule",
+                     "use \"scaled\" or \"base\"");
+  c.ramp_steps = rules.integer("ramp_steps", c.ramp_steps);
+  c.ramp_b_d = rules.number("ramp_b_d", c.ramp_b_d);
+  c.ramp_exponent = rules.number("ramp_exponent", c.ramp_exponent);
+  c.ramp_min_steps = rules.integer("ramp_min_steps", c.ramp_min_steps);
+  c.ramp_max_steps = rules.integer("ramp_max_steps", c.ramp_max_steps);
+  if (c.ramp_steps < 0 || c.ramp_min_steps < 0 || c.ramp_max_steps < c.ramp_min_steps || !(c.ramp_b_d > 0))
+    throw InputError(
+        rules.where("ramp_steps"),
+        "needs 0 <= ramp_min_steps <= ramp_max_steps, ramp_steps >= 0, ramp_b_d > 0",
+        "e.g. ramp_steps = 10000, ramp_b_d = 0.5, ramp_min_steps = 10000, ramp_max_steps = 1000000");
+  c.max_strain = rules.text("max_strain", c.max_strain);
+  if (c.max_strain != "scaled" && c.max_strain != "base")
+    throw InputError(rules.where("max_strain"), "'" + c.max_strain + "' is not a stop rule",
+                     "use \"scaled\" or \"base\"");
+  c.max_strain_factor = rules.number("max_strain_factor", c.max_strain_factor);
+  c.max_strain_min = rules.number("max_strain_min", c.max_strain_min);
+  if (!(c.max_strain_factor > 0) || !(c.max_strain_min > 0))
+    throw InputError(rules.where("max_strain_factor"), "max_strain_factor and max_strain_min must be > 0",
+                     "e.g. max_strain_factor = 20, max_strain_min = 1");
+  return c;
+}
+
+nlohmann::json to_json(const ScanConfig& c) {
+  const auto range = [](const std::optional<LogRange>& r) {
+    return r ? nlohmann::json{{"from", r->from}, {"to", r->to}, {"count", r->count}}
+             : nlohmann::json(nullptr);
+  };
+  nlohmann::json listed = nlohmann::json::array();
+  for (const auto& [k, b] : c.listed) listed.push_back({{"k_n", k}, {"b_d", b}});
+  return {{"file", c.file.string()},
+          {"scan", {{"base", c.base.string()}, {"output", c.output.string()}, {"set", c.set}}},
+          {"sample", c.sample},
+          {"grid", {{"k_n_N_per_mm", range(c.grid_k_n)}, {"b_d_mm", range(c.grid_b_d)}}},
+          {"points", listed},
+          {"rules",
+           {{"dt_s", c.dt ? nlohmann::json(*c.dt) : nlohmann::json("auto")},
+            {"ramp", c.ramp},
+            {"ramp_steps", c.ramp_steps},
+            {"ramp_b_d_mm", c.ramp_b_d},
+            {"ramp_exponent", c.ramp_exponent},
+            {"ramp_min_steps", c.ramp_min_steps},
+            {"ramp_max_steps", c.ramp_max_steps},
+            {"max_strain", c.max_strain},
+            {"max_strain_factor", c.max_strain_factor},
+            {"max_strain_min_percent", c.max_strain_min}}}};
+}
+
+loading::RunConfig base_config(const ScanConfig& config) {
+  std::vector<std::string> overrides = config.sample;
+  overrides.insert(overrides.end(), config.set.begin(), config.set.end());
+  return loading::load_config(config.base, overrides);
+}
+
+std::vector<double> log_spaced(const LogRange& range) {
+  std::vector<double> values;
+  for (int i = 0; i < range.count; ++i) {
+    const double t = range.count == 1 ? 0.0 : double(i) / double(range.count - 1);
+    values.push_back(round6(range.from * std::pow(range.to / range.from, t)));
+  }
+  return values;
+}
+
+double mean_rest_length(const Sample& sample) {
+  double sum = 0.0;
+  for (const auto& bond : sample.bonds) sum += bond.rest_length;
+  return sample.bonds.empty() ? 0.0 : sum / double(sample.bonds.size());
+}
+
+std::string point_name(double k_n, double b_d) { return fmt::format("kn_{}_bd_{}", k_n, b_d); }
+
+Plan make_plan(const ScanConfig& config, double rest_length) {
+  const loading::RunConfig base = base_config(config);
+  Plan plan;
+  plan.folder = config.output;
+  plan.base = config.base;
+  plan.scan_config = to_json(config);
+  std::vector<std::pair<double, double>> pairs;
+  if (config.grid_k_n)
+    for (double k : log_spaced(*config.grid_k_n))
+      for (double b : log_spaced(*config.grid_b_d)) pairs.emplace_back(k, b);
+  pairs.insert(pairs.end(), config.listed.begin(), config.listed.end());
+  std::set<std::pair<double, double>> seen;
+  for (const auto& [k, b] : pairs) {
+    if (!seen.insert({k, b}).second) continue;
+    Point p;
+    p.index = plan.points.size();
+    p.k_n = k;
+    p.b_d = b;
+    p.name = point_name(k, b);
+    // A gentler start for small b_d (paper section 3: 10^4 steps for large breaking strains, up to
+    // 10^6 where samples break at small strains): the shock of the start must stay below the strain
+    // that breaks a bond, which scales with b_d.
+    p.ramp_steps = base.ramp_steps;
+    if (config.ramp == "scaled") {
+      const double steps = double(config.ramp_steps) * std::pow(config.ramp_b_d / b, config.ramp_exponent);
+      p.ramp_steps = std::clamp(std::int64_t(std::llround(std::min(steps, 9e18))), config.ramp_min_steps,
+                                config.ramp_max_steps);
+    }
+    // Stop a fixed multiple past the strain where bonds start to break (b_d / r0), never later than
+    // the base config's max_strain: runs differ by orders of magnitude in the strain they need.
+    p.max_strain = base.max_strain;
+    if (config.max_strain == "scaled") {
+      const double first_break = 100.0 * (base.break_rule == "relative" ? b : b / rest_length);
+      p.max_strain = round6(std::clamp(config.max_strain_factor * first_break,
+                                       std::min(config.max_strain_min, base.max_strain), base.max_strain));
+    }
+    p.overrides = config.sample;
+    p.overrides.insert(p.overrides.end(), config.set.begin(), config.set.end());
+    p.overrides.push_back(fmt::format("bonds.stiffness={}", k));
+    p.overrides.push_back(fmt::format("bonds.break_distance={}", b));
+    p.overrides.push_back(config.dt ? fmt::format("time.dt={}", *config.dt) : "time.dt=\"auto\"");
+    p.overrides.push_back(fmt::format("loading.ramp_steps={}", p.ramp_steps));
+    p.overrides.push_back(fmt::format("stop.max_strain={}", p.max_strain));
+    plan.points.push_back(std::move(p));
+  }
+  for (const auto& p : plan.points) (void)point_config(plan, p, 1);  // bad input fails before anything runs
+  return plan;
+}
+
+loading::RunConfig point_config(const Plan& plan, const Point& point, int threads) {
+  auto overrides = point.overrides;
+  overrides.push_back(fmt::format("run.threads={}", threads));
+  return loading::load_config(plan.base, overrides);
+}
+
+std::string point_command(const Plan& plan, const Point& point, int threads) {
+  std::string command = "rupture run '" + plan.base.string() + "'";
+  for (const auto& o : point.overrides) command += " --set '" + o + "'";
+  return command + fmt::format(" --set run.threads={}", threads);
+}
+
+nlohmann::json to_json(const Plan& plan) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto& p : plan.points)
+    points.push_back({{"index", p.index},
+                      {"k_n_N_per_mm", p.k_n},
+                      {"b_d_mm", p.b_d},
+                      {"folder", "points/" + p.name},
+                      {"ramp_steps", p.ramp_steps},
+                      {"max_strain_percent", p.max_strain},
+                      {"overrides", p.overrides}});
+  return {{"base", plan.base.string()}, {"scan_config", plan.scan_config}, {"points", points}};
+}
+
+Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path& folder) {
+  Plan plan;
+  plan.folder = folder;
+  plan.base = document.at("base").get<std::string>();
+  plan.scan_config = document.at("scan_config");
+  for (const auto& j : document.at("points")) {
+    Point p;
+    p.index = j.at("index").get<std::size_t>();
+    p.k_n = j.at("k_n_N_per_mm").get<double>();
+    p.b_d = j.at("b_d_mm").get<double>();
+    p.name = point_name(p.k_n, p.b_d);
+    p.ramp_steps = j.at("ramp_steps").get<std::int64_t>();
+    p.max_strain = j.at("max_strain_percent").get<double>();
+    p.overrides = j.at("overrides").get<std::vector<std::string>>();
+    plan.points.push_back(std::move(p));
+  }
+  return plan;
+}
+
+void write_plan(const Plan& plan) {
+  std::filesystem::create_directories(plan.folder);
+  io::write_json_atomically(plan.folder / "plan.json", to_json(plan));
+}
+
+Plan read_plan(const std::filesystem::path& folder) {
+  const auto file = folder / "plan.json";
+  if (!std::filesystem::exists(file))
+    throw InputError(folder.string(), "not a scan folder (no plan.json)",
+                     "give the folder a scan wrote ([scan] output)");
+  try {
+    return plan_from_json(nlohmann::json::parse(io::read_text_file(file)), folder);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file.string(), std::string("unreadable: ") + e.what(), "rerun the scan to rewrite it");
+  }
+}
+
+}  // namespace rupture::scan

@@ -1,0 +1,325 @@
+// Scans: the point list and its rules, the results table round trip, and `rupture scan` end to end on
+// the block lattice — every column present, the same physics bytes for 1 and 2 jobs, for a scan killed
+// (SIGKILL) midway and restarted, and for job-array tasks collected afterwards; failed points recorded.
+#include "scan/scan.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "core/error.hpp"
+#include "scan/farm.hpp"
+#include "scan/results.hpp"
+#include "support/tool.hpp"
+
+namespace rupture::scan {
+namespace {
+
+using rupture::testing::run_rupture;
+using rupture::testing::slurp;
+using rupture::testing::TempDir;
+
+const std::string examples = RUPTURE_EXAMPLES_DIR;
+
+std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
+
+// The physics columns of a results.csv (all but wall_time), row by row, as text: equal strings mean
+// equal bytes.
+std::vector<std::string> physics(const std::filesystem::path& results) {
+  const ResultsTable table = read_results(results);
+  std::vector<std::string> lines;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    std::string line;
+    for (const auto& column : result_columns())
+      if (column.physics) line += table.text(r, column.name) + ",";
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// A scan of the block lattice grown to 6 x 16 x 3 particles and pulled slower, so that each point takes
+// long enough to be killed in the middle of one.
+std::string slow_scan(const std::string& output) {
+  return "[scan]\nbase = '" + examples + "block.toml'\noutput = '" + output +
+         "'\nset = [\"sample.lattice_cells=[6, 16, 3]\", \"loading.speed=250\"]\n"
+         "[grid]\nk_n = { from = 1e2, to = 1e3, count = 3 }\nb_d = { from = 0.002, to = 0.004, count = 2 }\n"
+         "[rules]\nramp_steps = 500\nramp_b_d = 0.004\nramp_min_steps = 500\nramp_max_steps = 2000\n"
+         "max_strain = \"scaled\"\nmax_strain_factor = 10\n";
+}
+
+TEST(ScanPlan, GridIsLogSpacedWithExactNames) {
+  EXPECT_EQ(log_spaced({100.0, 1e4, 3}), (std::vector<double>{100.0, 1000.0, 10000.0}));
+  EXPECT_EQ(log_spaced({0.002, 0.002, 1}), std::vector<double>{0.002});
+  // 10^(1/3) rounded to 6 significant digits, so the folder name is the value used.
+  const auto v = log_spaced({1.0, 10.0, 4});
+  EXPECT_DOUBLE_EQ(v[1], 2.15443);
+  EXPECT_EQ(point_name(v[1], 0.005), "kn_2.15443_bd_0.005");
+}
+
+TEST(ScanPlan, RulesScaleTheRampAndTheStopWithBreakingDistance) {
+  TempDir dir;
+  const auto config = load_scan_config(examples + "scan-block.toml");
+  // block.toml: simple cubic, radius 0.5 mm, so every bond's rest length is 1 mm.
+  const Plan plan = make_plan(config, 1.0);
+  ASSERT_EQ(plan.points.size(), 6u);
+  EXPECT_EQ(plan.points[0].name, "kn_100_bd_0.002");
+  EXPECT_EQ(plan.points[1].name, "kn_100_bd_0.004");  // k_n varies slowest
+  // ramp_steps x (ramp_b_d / b_d) = 500 x 0.004 / 0.002; stop at 10 x the first-break strain 100 b_d / r0.
+  EXPECT_EQ(plan.points[0].ramp_steps, 1000);
+  EXPECT_EQ(plan.points[1].ramp_steps, 500);
+  EXPECT_DOUBLE_EQ(plan.points[0].max_strain, 2.0);
+  EXPECT_DOUBLE_EQ(plan.points[1].max_strain, 4.0);
+  const auto run = point_config(plan, plan.points[5], 3);
+  EXPECT_EQ(run.bond_stiffness, 1e4);
+  EXPECT_EQ(run.break_distance, 0.004);
+  EXPECT_EQ(run.threads, 3);
+  EXPECT_FALSE(run.dt.has_value());  // dt = "auto": from k_n and the lightest particle
+}
+
+TEST(ScanPlan, ListedPointsFollowTheGridWithoutDuplicates) {
+  TempDir dir;
+  write(dir / "s.toml",
+        "[scan]\nbase = '" + examples +
+            "block.toml'\n[grid]\nk_n = { from = 1e2, to = 1e3, count = 2 }\n"
+            "b_d = { from = 0.002, to = 0.002, count = 1 }\n[[points]]\nk_n = 1e5\nb_d = 0.05\n"
+            "[[points]]\nk_n = 100\nb_d = 0.002\n");
+  const Plan plan = make_plan(load_scan_config(dir / "s.toml"), 1.0);
+  ASSERT_EQ(plan.points.size(), 3u);
+  EXPECT_EQ(plan.points[2].name, "kn_100000_bd_0.05");
+  EXPECT_EQ(plan.points[2].index, 2u);
+}
+
+TEST(ScanPlan, BadConfigsNameTheKeyAndTheFix) {
+  TempDir dir;
+  const auto message = [&](const std::string& text) {
+    write(dir / "bad.toml", text);
+    try {
+      (void)make_plan(load_scan_config(dir / "bad.toml"), 1.0);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string base = "[scan]\nbase = '" + examples + "block.toml'\n";
+  EXPECT_NE(
+      message(base + "[grid]\nk_n = { from = 1, to = 2, count = 2 }\nb_d = { from = 1, to = 2, count = 2 }\n"
+                     "[rules]\nramp_step = 5\n")
+          .find("rules.ramp_step"),
+      std::string::npos);
+  EXPECT_NE(message(base).find("no points"), std::string::npos);
+  EXPECT_NE(
+      message(base + "[grid]\nk_n = { from = 0, to = 2, count = 2 }\nb_d = { from = 1, to = 2, count = 2 }\n")
+          .find("grid.k_n"),
+      std::string::npos);
+  // A bad override reaches the run config's own check before anything runs.
+  EXPECT_NE(
+      message(base + "set = [\"bonds.nothing=1\"]\n[[points]]\nk_n = 1\nb_d = 1\n").find("bonds.nothing"),
+      std::string::npos);
+}
+
+TEST(ScanParallelism, JobsFillTheCoresAndLeftoversGoToThreads) {
+  EXPECT_EQ(choose_parallelism(16, 200, 0, 0).jobs, 16);
+  EXPECT_EQ(choose_parallelism(16, 200, 0, 0).threads, 1);
+  EXPECT_EQ(choose_parallelism(16, 3, 0, 0).jobs, 3);
+  EXPECT_EQ(choose_parallelism(16, 3, 0, 0).threads, 5);
+  EXPECT_EQ(choose_parallelism(16, 200, 0, 4).jobs, 4);
+  EXPECT_EQ(choose_parallelism(16, 200, 2, 0).threads, 8);
+  EXPECT_EQ(choose_parallelism(2, 200, 1, 1).jobs, 1);
+  EXPECT_EQ(choose_parallelism(1, 0, 0, 0).jobs, 1);
+}
+
+TEST(ScanResults, TextAndMissingValuesRoundTrip) {
+  const std::vector<nlohmann::json> rows = {
+      {{"point", 0}, {"k_n", 1e3}, {"status", "ok"}, {"why", "a, \"quoted\"\nreason"}, {"x_c", 0.1 + 0.2}},
+      {{"point", 1}, {"k_n", 2.5}, {"status", "pending"}}};
+  const std::string text = format_results(rows, {"test"});
+  const ResultsTable table = parse_results(text, "mem");
+  ASSERT_EQ(table.rows.size(), 2u);
+  EXPECT_EQ(table.header.size(), result_columns().size());
+  EXPECT_EQ(table.text(0, "why"), "a, \"quoted\"\nreason");
+  EXPECT_EQ(*table.number(0, "x_c"), 0.1 + 0.2);  // shortest form that reads back exactly
+  EXPECT_FALSE(table.number(1, "x_c").has_value());
+  EXPECT_EQ(table.text(1, "status"), "pending");
+  EXPECT_THROW((void)table.number(0, "status"), InputError);
+  EXPECT_THROW((void)table.require("nothing"), InputError);
+  EXPECT_THROW(parse_results("a,b\n1\n", "mem"), InputError);
+}
+
+TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobCount) {
+  TempDir dir;
+  const auto one = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " +
+                               shell_quoted(dir / "one") + " --jobs 1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto two = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " +
+                               shell_quoted(dir / "two") + " --jobs 2");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  const ResultsTable table = read_results(dir / "one" / "results.csv");
+  ASSERT_EQ(table.rows.size(), 6u);
+  for (std::size_t c = 0; c < result_columns().size(); ++c)
+    EXPECT_EQ(table.header[c], result_columns()[c].header());
+  std::size_t accepted = 0;
+  for (std::size_t r = 0; r < 6; ++r) {
+    EXPECT_EQ(table.text(r, "status"), "ok") << table.text(r, "why");
+    EXPECT_EQ(table.text(r, "stop_reason"), "separated");
+    EXPECT_GT(*table.number(r, "dt"), 0.0);
+    EXPECT_GT(*table.number(r, "broken_bonds"), 0.0);
+    EXPECT_TRUE(std::filesystem::exists(dir / "one" / "points" /
+                                        point_name(*table.number(r, "k_n"), *table.number(r, "b_d")) /
+                                        "result.json"));
+    if (*table.number(r, "accepted") == 1.0) {
+      ++accepted;
+      // An accepted point has every analysed quantity, the critical strain inside the run.
+      for (const char* name :
+           {"x_c", "F_c", "x_p", "Erate_max", "x_m", "E_max", "delta_x", "delta_x_lo95", "Gamma", "A_r"})
+        EXPECT_TRUE(table.number(r, name).has_value()) << name;
+      EXPECT_LT(*table.number(r, "x_c"), *table.number(r, "final_strain"));
+      EXPECT_LE(*table.number(r, "delta_x_lo95"), *table.number(r, "delta_x"));
+      EXPECT_FALSE(table.text(r, "class").empty());
+    }
+  }
+  EXPECT_GE(accepted, 1u);
+  EXPECT_EQ(physics(dir / "one" / "results.csv"), physics(dir / "two" / "results.csv"));
+  const auto scan = nlohmann::json::parse(slurp(dir / "two" / "scan.json"));
+  EXPECT_EQ(scan["jobs"], 2);
+  EXPECT_EQ(scan["counts"]["ok"], 6);
+  EXPECT_FALSE(scan["version"].get<std::string>().empty());
+  // Run again: nothing left to do, nothing redone.
+  const auto again =
+      run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " + shell_quoted(dir / "one"));
+  EXPECT_NE(again.out.find("0 to run"), std::string::npos) << again.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "one" / "points" / "kn_100_bd_0.002" / "attempt-2"));
+  const auto status = run_rupture("scan --status " + shell_quoted(dir / "one"));
+  EXPECT_EQ(status.exit_code, 0);
+  EXPECT_NE(status.out.find("6 points: 6 done, 0 failed, 0 running, 0 pending"), std::string::npos)
+      << status.out;
+}
+
+TEST(ScanCommand, KilledMidwayAndRestartedGivesTheSameResults) {
+  TempDir dir;
+  write(dir / "whole.toml", slow_scan((dir / "whole").string()));
+  write(dir / "killed.toml", slow_scan((dir / "killed").string()));
+  const auto whole = run_rupture("scan " + shell_quoted(dir / "whole.toml") + " --jobs 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    const std::string config = (dir / "killed.toml").string();
+    ::setenv("CI", "1", 1);
+    ::execl(RUPTURE_BINARY, RUPTURE_BINARY, "scan", config.c_str(), "--jobs", "1",
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Kill it (SIGKILL: no chance to clean up) in the middle of the second point: its run has begun
+  // (run.json is written before the first step) and the first point is finished.
+  const auto points = dir / "killed" / "points";
+  const auto first = points / "kn_100_bd_0.002";
+  const auto second = points / "kn_100_bd_0.004";
+  int status = 0;
+  bool exited = false;
+  while (!std::filesystem::exists(second / "attempt-1" / "run.json")) {
+    if (::waitpid(child, &status, WNOHANG) == child) {
+      exited = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_FALSE(exited) << "the scan ended before its second point began";
+  ::kill(child, SIGKILL);
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const std::string first_result = slurp(first / "result.json");
+  ASSERT_FALSE(std::filesystem::exists(second / "result.json"))
+      << "the second point finished before the kill";
+
+  const auto status_text = run_rupture("scan --status " + shell_quoted(dir / "killed"));
+  EXPECT_NE(status_text.out.find("6 points: 1 done, 0 failed, 0 running, 5 pending (1 of them partial"),
+            std::string::npos)
+      << status_text.out;  // the lock died with the process
+
+  const auto restarted = run_rupture("scan " + shell_quoted(dir / "killed.toml") + " --jobs 1");
+  ASSERT_EQ(restarted.exit_code, 0) << restarted.err;
+  EXPECT_NE(restarted.out.find("5 to run"), std::string::npos) << restarted.out;
+  EXPECT_EQ(slurp(first / "result.json"), first_result);  // a finished point is never redone
+  EXPECT_FALSE(std::filesystem::exists(first / "attempt-2"));
+  EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(dir / "killed" / "results.csv"));
+  // The interrupted point was redone in a fresh attempt folder; the partial one is left apart, unread.
+  EXPECT_EQ(nlohmann::json::parse(slurp(second / "result.json"))["attempt"], "attempt-2");
+  EXPECT_TRUE(std::filesystem::exists(second / "attempt-1"));
+  EXPECT_FALSE(std::filesystem::exists(second / "attempt-1" / "analysis.json"));
+}
+
+TEST(ScanCommand, ArrayTasksThenCollectGiveTheSameResults) {
+  TempDir dir;
+  const std::string config = shell_quoted(examples + "scan-block.toml");
+  const auto whole = run_rupture("scan " + config + " -o " + shell_quoted(dir / "whole"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  for (int i = 5; i >= 0; --i) {
+    // Task 2 through the scheduler's variable, the rest through the option.
+    if (i == 2) ::setenv("SLURM_ARRAY_TASK_ID", "2", 1);
+    const auto task = run_rupture("scan " + config + " -o " + shell_quoted(dir / "array") +
+                                  (i == 2 ? std::string() : " --task-index " + std::to_string(i)));
+    ::unsetenv("SLURM_ARRAY_TASK_ID");
+    ASSERT_EQ(task.exit_code, 0) << task.err;
+    if (i == 5) {
+      EXPECT_FALSE(
+          std::filesystem::exists(dir / "array" / "results.csv"));  // tasks leave the aggregate to --collect
+    }
+  }
+  const auto past = run_rupture("scan " + config + " -o " + shell_quoted(dir / "array") + " --task-index 6");
+  EXPECT_EQ(past.exit_code, 2);
+  EXPECT_NE(past.err.find("--array=0-5"), std::string::npos) << past.err;
+  const auto collect = run_rupture("scan --collect " + shell_quoted(dir / "array"));
+  ASSERT_EQ(collect.exit_code, 0) << collect.err;
+  EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(dir / "array" / "results.csv"));
+}
+
+TEST(ScanCommand, FailedPointsAreRecordedAndTheScanGoesOn) {
+  TempDir dir;
+  // A fixed dt that is stable for k_n = 100 N/mm but 5x over the limit for 10^4 N/mm (allowed, so the
+  // run goes unstable), and a stop strain below the first break for the third point.
+  write(dir / "s.toml", "[scan]\nbase = '" + examples + "block.toml'\noutput = '" + (dir / "out").string() +
+                            "'\nset = [\"time.allow_unstable_dt=true\", \"output.interval=10\"]\n"
+                            "[[points]]\nk_n = 100\nb_d = 0.002\n[[points]]\nk_n = 1e4\nb_d = 0.002\n"
+                            "[[points]]\nk_n = 100\nb_d = 0.5\n[rules]\ndt = 2.5e-7\nramp = \"base\"\n");
+  const auto r = run_rupture("scan " + shell_quoted(dir / "s.toml"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ResultsTable table = read_results(dir / "out" / "results.csv");
+  ASSERT_EQ(table.rows.size(), 3u);
+  EXPECT_EQ(table.text(0, "status"), "ok");
+  EXPECT_EQ(table.text(1, "status"), "unstable");
+  EXPECT_NE(table.text(1, "why").find("unstable"), std::string::npos);
+  EXPECT_EQ(*table.number(1, "dt"), 2.5e-7);
+  EXPECT_EQ(table.text(2, "status"), "no_separation");
+  EXPECT_EQ(table.text(2, "stop_reason"), "max_strain");
+  EXPECT_EQ(*table.number(2, "accepted"), 0.0);
+  const auto status = run_rupture("scan --status " + shell_quoted(dir / "out"));
+  EXPECT_NE(status.out.find("3 points: 1 done, 2 failed"), std::string::npos) << status.out;
+}
+
+TEST(ScanCommand, ChangedConfigOnAnOldFolderIsRefused) {
+  TempDir dir;
+  write(dir / "s.toml", "[scan]\nbase = '" + examples + "block.toml'\noutput = '" + (dir / "out").string() +
+                            "'\n[[points]]\nk_n = 100\nb_d = 0.002\n");
+  ASSERT_EQ(run_rupture("scan " + shell_quoted(dir / "s.toml")).exit_code, 0);
+  write(dir / "s.toml", "[scan]\nbase = '" + examples + "block.toml'\noutput = '" + (dir / "out").string() +
+                            "'\nset = [\"loading.speed=100\"]\n[[points]]\nk_n = 100\nb_d = 0.002\n");
+  const auto r = run_rupture("scan " + shell_quoted(dir / "s.toml"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("different run config"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace rupture::scan
