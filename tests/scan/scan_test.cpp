@@ -1,22 +1,23 @@
 // Scans: the point list and its rules, the results table round trip, and `rupture scan` end to end on
 // the block lattice — every column present, the same physics bytes for 1 and 2 jobs, for a scan killed
 // (SIGKILL) midway and restarted, and for job-array tasks collected afterwards; failed points recorded.
-#include "scan/scan.hpp"
-
 #include <fcntl.h>
-#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "scan/farm.hpp"
 #include "scan/results.hpp"
+#include "scan/scan.hpp"
+#include "scan_support.hpp"
 #include "support/tool.hpp"
 
 namespace rupture::scan {
@@ -25,26 +26,12 @@ namespace {
 using rupture::testing::run_rupture;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
+using test_support::physics;
+using test_support::shell_quoted;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
 
-std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
-
 void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
-
-// The physics columns of a results.csv (all but wall_time), row by row, as text: equal strings mean
-// equal bytes.
-std::vector<std::string> physics(const std::filesystem::path& results) {
-  const ResultsTable table = read_results(results);
-  std::vector<std::string> lines;
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    std::string line;
-    for (const auto& column : result_columns())
-      if (column.physics) line += table.text(r, column.name) + ",";
-    lines.push_back(line);
-  }
-  return lines;
-}
 
 // A scan of the block lattice grown to 6 x 16 x 3 particles and pulled slower, so that each point takes
 // long enough to be killed in the middle of one.
