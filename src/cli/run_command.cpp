@@ -1,8 +1,12 @@
-// cli/run_command: `rupture run CONFIG.toml` (the DEM tension test) and `rupture check CONFIG.toml`
-// (the resolved config, dt with its inputs, speed ratio, estimates and warnings, without stepping).
-// Owns option parsing and terminal text; the run itself is loading/run.
+// cli/run_command: `rupture run CONFIG.toml` (the DEM tension test), `rupture run --resume DIR`
+// (continue an interrupted or killed run from its newest checkpoint) and `rupture check
+// CONFIG.toml` (the resolved config, dt with its inputs, speed ratio, estimates and warnings,
+// without stepping). Owns option parsing and terminal text; the run itself is loading/run.
+// Exit codes: 0 finished, 1 failed (unstable, a write failed), 2 bad input, 128 + signal when
+// SIGINT (130) or SIGTERM (143) stopped the run after writing a checkpoint.
 #include <fmt/format.h>
 
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "loading/config.hpp"
+#include "loading/interrupt.hpp"
 #include "loading/run.hpp"
 
 namespace rupture::cli {
@@ -22,6 +27,7 @@ struct RunOptions {
   std::string config;
   std::vector<std::string> overrides;
   std::string output;
+  std::string resume;  // run folder to continue
   bool help_config = false;
 };
 
@@ -75,20 +81,44 @@ void add_run_commands(CLI::App& app, int& exit_code) {
   auto* run = app.add_subcommand("run", "Run a DEM tension test from a TOML config");
   add_config_options(*run, *run_options);
   run->add_option("-o,--output", run_options->output, "output folder (overrides output.folder)");
+  run->add_option("--resume", run_options->resume,
+                  "continue the interrupted or killed run in this folder from its newest checkpoint");
   run->callback([run_options, &exit_code] {
     if (run_options->help_config) {
       fmt::print("{}", loading::config_reference());
       return;
     }
-    const auto config = load(*run_options);
-    const Sample sample = loading::resolve_sample(config);
-    const auto summary =
-        loading::run_simulation(config, sample, config.output_folder, command_line("run", *run_options));
+    const auto& options = *run_options;
+    if (!options.resume.empty() && (!options.config.empty() || !options.overrides.empty() || !options.output.empty()))
+      throw InputError("rupture run --resume", "takes no config, --set or --output",
+                       "a resumed run keeps the config and folder it began with: run `rupture run --resume " +
+                           options.resume + "` alone");
+    loading::install_interrupt_handlers();
+    loading::RunSummary summary;
+    std::string folder;
+    if (!options.resume.empty()) {
+      folder = options.resume;
+      summary = loading::resume_simulation(folder, "rupture run --resume " + folder);
+    } else {
+      const auto config = load(options);
+      const Sample sample = loading::resolve_sample(config);
+      folder = config.output_folder;
+      summary = loading::run_simulation(config, sample, folder, command_line("run", options));
+    }
+    if (summary.signal != 0) {
+      fmt::print(stderr,
+                 "interrupted by {} after step {} (strain {:.4g} %); checkpoint {} written; continue with "
+                 "`rupture run --resume {}`\n",
+                 summary.signal == SIGINT ? "SIGINT" : "SIGTERM", summary.steps, summary.strain,
+                 summary.checkpoint.string(), folder);
+      exit_code = loading::interrupt_exit_code(summary.signal);
+      return;
+    }
     fmt::print(
         "{}: {} after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s; energy balance error {:.3g} of "
         "the plate work; outputs in {}\n",
         summary.status, summary.stop_reason, summary.steps, summary.strain, summary.broken_bonds,
-        summary.wall_seconds, summary.max_relative_energy_error, config.output_folder);
+        summary.wall_seconds, summary.max_relative_energy_error, folder);
     exit_code = exit_ok;
   });
 

@@ -187,6 +187,12 @@ System::System(const Sample& sample, const Params& params) : params_(params) {
   update_plate_forces();
 }
 
+std::size_t System::state_bytes() const {
+  const std::size_t n = x_.size();
+  return n * (13 * sizeof(double) + 3 * sizeof(std::uint32_t)) + (n + 1) * sizeof(std::uint32_t) +
+         intact_.size() + (link_bond_.size() + nb_.size()) * sizeof(std::uint32_t);
+}
+
 std::size_t System::memory_bytes() const {
   std::size_t bytes = 0;
   for (const auto* v : {&x_,

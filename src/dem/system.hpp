@@ -186,6 +186,8 @@ class System {
 
   const StageTimes& stage_times() const { return times_; }
   std::size_t neighbour_rebuilds() const { return rebuilds_; }
+  // Bytes of the state save_state() returns (the bulk of a checkpoint).
+  std::size_t state_bytes() const;
   // Bytes held by the engine's arrays (capacity), for memory reports.
   std::size_t memory_bytes() const;
 

@@ -125,10 +125,12 @@ template <class Io, class C>
 void visit_fields(Io& io, C& c) {
   io("version", c.version);
   io("command", c.command);
+  io("config_file", c.config_file);
   io("config", c.config_json);
   io("sample_fingerprint", c.sample_fingerprint);
   auto& l = c.loop;
   io("curves_bytes", l.curves_bytes);
+  io("curves_rows", l.curves_rows);
   io("breaks_bytes", l.breaks_bytes);
   io("last_recorded", l.last_recorded);
   io("max_work", l.max_work);
@@ -137,12 +139,13 @@ void visit_fields(Io& io, C& c) {
   io("separated", l.separated);
   io("separation_strain", l.separation_strain);
   io("separation_rule", l.separation_rule);
-  io("load_free_sum", l.load_free_sum);
-  io("load_free_count", l.load_free_count);
-  io("load_free_last_strain", l.load_free_last_strain);
-  io("load_free_peak", l.load_free_peak);
-  io("load_free_active", l.load_free_active);
-  io("load_free_since", l.load_free_since);
+  auto& free = l.load_free;
+  io("load_free.sum", free.sum);
+  io("load_free.count", free.count);
+  io("load_free.last_strain", free.last_strain);
+  io("load_free.peak", free.peak);
+  io("load_free.load_free", free.load_free);
+  io("load_free.free_since", free.free_since);
   io("wall_seconds", l.wall_seconds);
   auto& e = c.engine;
   io("step", e.step);
@@ -324,8 +327,8 @@ LoadedCheckpoint load_newest_checkpoint(const fs::path& folder) {
   }
   throw InputError((folder / "checkpoints").string(),
                    loaded.warnings.empty() ? "holds no checkpoint" : "holds no readable checkpoint",
-                   "a run writes checkpoints every output.checkpoint_interval steps or "
-                   "output.checkpoint_minutes; start the run again");
+                   "a run writes checkpoints every checkpoint.every steps or checkpoint.minutes of "
+                   "wall time; start the run again");
 }
 
 }  // namespace rupture::loading

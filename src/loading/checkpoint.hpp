@@ -12,6 +12,7 @@
 
 #include "dem/system.hpp"
 #include "io/vtk.hpp"
+#include "loading/separation.hpp"
 #include "sample/sample.hpp"
 
 namespace rupture::loading {
@@ -19,10 +20,12 @@ namespace rupture::loading {
 // Written into every checkpoint; a reader refuses any other.
 inline constexpr std::uint32_t checkpoint_format_version = 1;
 
-// The run loop's own state between two steps (besides the engine's).
+// The run loop's own state between two steps (besides the engine's). The live monitor is not
+// stored: it only ever consumed the curves.csv rows, so a resume replays them.
 struct LoopState {
-  std::uint64_t curves_bytes = 0;  // bytes of curves.csv written and synced at this step
-  std::uint64_t breaks_bytes = 0;  // bytes of breaks.csv
+  std::uint64_t curves_bytes = 0;   // bytes of curves.csv written and synced at this step
+  std::uint64_t curves_rows = 0;    // data rows among them
+  std::uint64_t breaks_bytes = 0;   // bytes of breaks.csv
   std::uint64_t last_recorded = 0;  // step of the last curves.csv row
   double max_work = 0.0;            // mJ: largest |W| recorded so far
   double max_energy_error = 0.0;    // mJ
@@ -30,20 +33,15 @@ struct LoopState {
   bool separated = false;                  // a separation rule has fired
   double separation_strain = 0.0;          // % where it fired
   std::string separation_rule;             // which one ("" before)
-  // The load-free separation rule's running sums (loading/separation: LoadFreeWatch).
-  double load_free_sum = 0.0;  // N: sum of top-plate forces since the last check
-  std::uint64_t load_free_count = 0;
-  double load_free_last_strain = 0.0;  // %
-  double load_free_peak = 0.0;         // N
-  bool load_free_active = false;       // a load-free stretch is under way
-  double load_free_since = 0.0;        // % where it began
-  std::vector<io::PvdEntry> snapshots;  // the snapshots.pvd list so far
-  double wall_seconds = 0.0;            // s of wall time spent before this checkpoint
+  LoadFreeWatch::State load_free;          // the load-free rule's running sums
+  std::vector<io::PvdEntry> snapshots;     // the snapshots.pvd list so far
+  double wall_seconds = 0.0;               // s of wall time spent before this checkpoint
 };
 
 struct Checkpoint {
   std::string version;       // rupture version that wrote it
   std::string command;       // the command that started the run
+  std::string config_file;   // the config it read (relative sample paths resolve against it)
   std::string config_json;   // the resolved config (loading::to_json): a resume rebuilds the run from it
   std::uint64_t sample_fingerprint = 0;  // of the sample the run started from (sample_fingerprint())
   LoopState loop;

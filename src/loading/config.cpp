@@ -205,6 +205,14 @@ const std::vector<Key>& schema() {
                            &RunConfig::output_interval));
     k.push_back(number_key("output", "snapshot_interval", "steps", "steps between VTK snapshots (0: none)",
                            &RunConfig::snapshot_interval));
+    k.push_back(number_key("checkpoint", "every", "steps",
+                           "steps between restart checkpoints (0: by wall time only)",
+                           &RunConfig::checkpoint_every));
+    k.push_back(number_key("checkpoint", "minutes", "min",
+                           "wall-clock minutes between restart checkpoints (0: by steps only)",
+                           &RunConfig::checkpoint_minutes));
+    k.push_back(number_key("checkpoint", "keep", "1", "newest checkpoints kept (older ones are removed)",
+                           &RunConfig::checkpoint_keep));
     k.push_back(number_key("run", "threads", "1", "OpenMP threads (results do not depend on it)",
                            &RunConfig::threads));
     return k;
@@ -287,6 +295,12 @@ void validate(const RunConfig& c, const std::string& file) {
   check(c.output_interval > 0, at("output.interval"), "must be > 0 (steps)", "use e.g. 1000");
   check(c.snapshot_interval >= 0, at("output.snapshot_interval"), "must be >= 0 (steps)",
         "use 0 for no snapshots");
+  check(c.checkpoint_every >= 0, at("checkpoint.every"), "must be >= 0 (steps)",
+        "use e.g. 100000, or 0 to checkpoint by wall time only");
+  check(c.checkpoint_minutes >= 0 && std::isfinite(c.checkpoint_minutes), at("checkpoint.minutes"),
+        "must be >= 0 (minutes)", "use e.g. 30, or 0 to checkpoint by steps only");
+  check(c.checkpoint_keep >= 1 && c.checkpoint_keep <= 100, at("checkpoint.keep"), "must be between 1 and 100",
+        "use 2 (a damaged newest checkpoint then falls back to the one before)");
   check(c.threads >= 1 && c.threads <= 1024, at("run.threads"), "must be between 1 and 1024", "use e.g. 2");
   check(c.lattice_radius > 0, at("sample.lattice_radius"), "must be > 0 (mm)", "use e.g. 0.5");
   for (auto n : c.lattice_cells)
@@ -296,6 +310,61 @@ void validate(const RunConfig& c, const std::string& file) {
     check(c.lattice_cells[1] >= 2, at("sample.lattice_cells"), "needs at least 2 particles along y",
           "write e.g. [1, 10, 1]");
   check(!c.density || *c.density > 0, at("sample.density"), "must be > 0 (g/mm^3)", "use e.g. 2.5e-4");
+}
+
+RunConfig from_table(const toml::table& table, const std::string& source) {
+  RunConfig config;
+  config.config_file = source;
+  for (const auto& [section_key, section_node] : table) {
+    const std::string section(section_key.str());
+    const auto* sub = section_node.as_table();
+    if (sub == nullptr) {
+      throw InputError(source + ": " + section, "unknown key (every key belongs to a [section])",
+                       "valid keys: " + valid_keys());
+    }
+    for (const auto& [name_key, node] : *sub) {
+      const std::string path = section + "." + std::string(name_key.str());
+      const Key* key = find_key(path);
+      if (key == nullptr)
+        throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
+      key->read(node, config, source + ": " + path);
+    }
+  }
+  validate(config, source);
+  return config;
+}
+
+// A resolved config (to_json's form) as a TOML table, so that it is read and checked by the same
+// keys as a file; null (density: the sample's own) leaves the key out.
+toml::table table_from_json(const nlohmann::json& resolved, const std::string& source) {
+  toml::table table;
+  if (!resolved.is_object()) throw InputError(source, "the stored configuration is not a JSON object", "start the run again");
+  for (const auto& [section, keys] : resolved.items()) {
+    if (!keys.is_object())
+      throw InputError(source + ": " + section, "is not a table in the stored configuration", "start the run again");
+    toml::table sub;
+    for (const auto& [name, v] : keys.items()) {
+      if (v.is_null()) continue;
+      if (v.is_boolean()) sub.insert(name, v.get<bool>());
+      else if (v.is_number_integer()) sub.insert(name, v.get<std::int64_t>());
+      else if (v.is_number()) sub.insert(name, v.get<double>());
+      else if (v.is_string()) sub.insert(name, v.get<std::string>());
+      else if (v.is_array()) {
+        toml::array array;
+        for (const auto& e : v) {
+          if (!e.is_number_integer())
+            throw InputError(source + ": " + section + "." + name, "holds a list of other than whole numbers",
+                             "start the run again");
+          array.push_back(e.get<std::int64_t>());
+        }
+        sub.insert(name, std::move(array));
+      } else {
+        throw InputError(source + ": " + section + "." + name, "holds a value of no config type", "start the run again");
+      }
+    }
+    table.insert(section, std::move(sub));
+  }
+  return table;
 }
 
 }  // namespace
@@ -325,25 +394,7 @@ RunConfig parse_config(const std::string& toml_text, const std::string& source,
                      "fix the TOML syntax");
   }
   for (const auto& assignment : overrides) apply_override(table, assignment);
-  RunConfig config;
-  config.config_file = source;
-  for (const auto& [section_key, section_node] : table) {
-    const std::string section(section_key.str());
-    const auto* sub = section_node.as_table();
-    if (sub == nullptr) {
-      throw InputError(source + ": " + section, "unknown key (every key belongs to a [section])",
-                       "valid keys: " + valid_keys());
-    }
-    for (const auto& [name_key, node] : *sub) {
-      const std::string path = section + "." + std::string(name_key.str());
-      const Key* key = find_key(path);
-      if (key == nullptr)
-        throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
-      key->read(node, config, source + ": " + path);
-    }
-  }
-  validate(config, source);
-  return config;
+  return from_table(table, source);
 }
 
 RunConfig load_config(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
@@ -353,6 +404,12 @@ RunConfig load_config(const std::filesystem::path& file, const std::vector<std::
   text << in.rdbuf();
   RunConfig config = parse_config(text.str(), file.string(), overrides);
   config.config_file = file;
+  return config;
+}
+
+RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem::path& config_file) {
+  RunConfig config = from_table(table_from_json(resolved, config_file.string()), config_file.string());
+  config.config_file = config_file;
   return config;
 }
 

@@ -61,6 +61,11 @@ struct RunConfig {
   std::string output_folder = "run";    // relative to the working directory
   std::int64_t output_interval = 1000;  // steps between curve rows
   std::int64_t snapshot_interval = 0;   // steps between snapshots (0: none)
+  // [checkpoint] restart files for `rupture run --resume` (loading/checkpoint); a checkpoint is
+  // due when either interval has passed, and one is always written on SIGINT/SIGTERM.
+  std::int64_t checkpoint_every = 0;  // steps between checkpoints (0: by wall time only)
+  double checkpoint_minutes = 30.0;   // wall-clock minutes between checkpoints (0: by steps only)
+  std::int64_t checkpoint_keep = 2;   // newest checkpoints kept; older ones are removed
   // [run]
   std::int64_t threads = 2;
 
@@ -74,6 +79,10 @@ struct RunConfig {
 RunConfig load_config(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 RunConfig parse_config(const std::string& toml_text, const std::string& source,
                        const std::vector<std::string>& overrides = {});
+
+// The resolved form back (to_json's output, as a checkpoint stores it), checked as a TOML file is.
+// `config_file` is where the original was read from: relative sample paths resolve against it.
+RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem::path& config_file);
 
 // Every key with unit, default and meaning, as a commented TOML document (for --help-config).
 std::string config_reference();

@@ -5,7 +5,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <unistd.h>
 #include <memory>
 
 #include "core/error.hpp"
@@ -15,6 +18,8 @@
 #include "io/csv.hpp"
 #include "io/vtk.hpp"
 #include "analysis/monitor.hpp"
+#include "loading/checkpoint.hpp"
+#include "loading/interrupt.hpp"
 #include "loading/ramp.hpp"
 #include "loading/separation.hpp"
 #include "rupture/version.hpp"
@@ -31,23 +36,57 @@ namespace {
 // as measured by `rupture bench` (docs/performance.md).
 constexpr double assumed_particle_steps_per_s = 2e7;
 
-// A streamed CSV file: written row by row during the run (it cannot be atomic), flushed after
-// every row so that a killed run keeps everything recorded so far.
+// A CSV file streamed row by row during the run (it cannot be atomic), flushed after every row so
+// that a killed run keeps everything recorded so far. A resume cuts it back to the byte count its
+// checkpoint recorded and appends from there. Every failed write throws RunError.
 class CsvStream {
  public:
+  // A new file with its comment lines and header.
   CsvStream(const std::filesystem::path& path, const std::vector<std::string>& comments,
             const std::vector<std::string>& header)
-      : file_(std::fopen(path.c_str(), "w"), &std::fclose) {
-    if (!file_) throw RunError(fmt::format("cannot write {}", path.string()));
-    for (const auto& c : comments) std::fprintf(file_.get(), "# %s\n", c.c_str());
-    std::fputs(io::format_csv_header(header).c_str(), file_.get());
-    std::fflush(file_.get());
+      : path_(path), file_(std::fopen(path.c_str(), "wb"), &std::fclose) {
+    if (!file_) fail();
+    for (const auto& c : comments) put("# " + c + "\n");
+    put(io::format_csv_header(header));
+    flush();
   }
-  void row(const std::vector<double>& values) { std::fputs(io::format_csv_row(values).c_str(), file_.get()); }
-  void flush() { std::fflush(file_.get()); }
+  // The file of an earlier run, cut back to `bytes` (a resume).
+  CsvStream(const std::filesystem::path& path, std::uint64_t bytes) : path_(path), file_(nullptr, &std::fclose) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size < bytes)
+      throw InputError(path.string(),
+                       ec ? "cannot be read (" + ec.message() + ")"
+                          : fmt::format("holds {} bytes, fewer than the {} its checkpoint recorded", size, bytes),
+                       "the run folder was changed after the checkpoint; start the run again");
+    std::filesystem::resize_file(path, bytes, ec);
+    if (ec) throw RunError(fmt::format("{}: cannot cut back to {} bytes ({})", path.string(), bytes, ec.message()));
+    file_.reset(std::fopen(path.c_str(), "ab"));
+    if (!file_) fail();
+    bytes_ = bytes;
+  }
+  void row(const std::vector<double>& values) { put(io::format_csv_row(values)); }
+  void flush() {
+    if (std::fflush(file_.get()) != 0) fail();
+  }
+  // Flushed and on disk (fsync): the byte count a checkpoint may record.
+  std::uint64_t sync() {
+    flush();
+    if (fsync(fileno(file_.get())) != 0) fail();
+    return bytes_;
+  }
 
  private:
+  void put(const std::string& text) {
+    if (std::fputs(text.c_str(), file_.get()) == EOF) fail();
+    bytes_ += text.size();
+  }
+  [[noreturn]] void fail() const {
+    throw RunError(fmt::format("{}: write failed ({}); is the disk full?", path_.string(), std::strerror(errno)));
+  }
+  std::filesystem::path path_;
   std::unique_ptr<std::FILE, decltype(&std::fclose)> file_;
+  std::uint64_t bytes_ = 0;
 };
 
 const std::vector<std::string> curve_header = {"time[s]",
@@ -204,8 +243,65 @@ nlohmann::json to_json(const RunPlan& plan) {
           {"warnings", plan.warnings}};
 }
 
-RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command) {
+namespace {
+
+// A particle that moves more than this part of its own radius in one step is taken as a blow-up:
+// at the automatic dt a particle moves far less (the plates' step is 1e-5 radii), while a runaway
+// mode grows by orders of magnitude within a few steps, so the exact value hardly matters.
+constexpr double max_step_move = 0.5;  // 1, of the particle's radius
+
+// The folder of a new run: created, free of a run that could still be resumed, writable, and with
+// room for its checkpoints, all before the first step.
+void prepare_folder(const std::filesystem::path& folder, const RunConfig& config, const dem::System& system) {
+  const std::string fix = "choose a writable folder with -o/--output or output.folder";
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw InputError(folder.string(), fmt::format("cannot create the output folder ({})", ec.message()), fix);
+  if (!list_checkpoints(folder).empty())
+    throw InputError(folder.string(), "holds the checkpoints of an unfinished run",
+                     fmt::format("continue it with `rupture run --resume {}`, or remove {} to start over",
+                                 folder.string(), (folder / "checkpoints").string()));
+  // A checkpoint is the engine state plus a little text; the newest `keep` stay while one more is
+  // written. The curve files are small beside them.
+  const double checkpoint_bytes = double(system.state_bytes()) + 65536.0;
+  const double needed = double(config.checkpoint_keep + 1) * checkpoint_bytes;
+  const auto space = std::filesystem::space(folder, ec);
+  if (!ec && double(space.available) < needed)
+    throw InputError(folder.string(),
+                     fmt::format("has {:.3g} MB free, but {} checkpoints of {:.3g} MB need {:.3g} MB",
+                                 double(space.available) / 1e6, config.checkpoint_keep + 1, checkpoint_bytes / 1e6,
+                                 needed / 1e6),
+                     "free space, choose another output folder, or lower checkpoint.keep");
+}
+
+analysis::MonitorOptions monitor_options(const RunConfig& config) {
+  return {.window = std::size_t(config.monitor_window),
+          .drop = config.monitor_drop,
+          .confirm = std::size_t(config.monitor_confirm)};
+}
+
+// The monitor's state at a checkpoint: it has only ever seen the curves.csv rows, so feed them
+// again (the file holds the shortest text that reads back to each double, so the bits match).
+void replay(analysis::Monitor& monitor, const std::filesystem::path& curves_file, std::uint64_t rows) {
+  const io::CsvTable curves = io::read_csv(curves_file);
+  if (curves.rows() != rows)
+    throw InputError(curves_file.string(),
+                     fmt::format("holds {} rows where its checkpoint recorded {}", curves.rows(), rows),
+                     "the run folder was changed after the checkpoint; start the run again");
+  const auto& strain = curves.column("strain");
+  const auto& force = curves.column("force_top");
+  const auto& energy = curves.column("elastic_energy");
+  for (std::size_t r = 0; r < rows; ++r) (void)monitor.add_point(strain[r], force[r], energy[r]);
+}
+
+// What a resume starts from: the checkpoint, its file, and what is recorded in run.json.
+struct ResumePoint {
+  const LoadedCheckpoint& loaded;
+  std::string command;  // the resuming command line
+};
+
+RunSummary execute(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
+                   const std::string& command, const ResumePoint* resume) {
   const auto wall_start = std::chrono::steady_clock::now();
   omp_set_num_threads(int(config.threads));
   const dem::Params params = config.dem_params(sample.density);
@@ -213,13 +309,31 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   const RunPlan plan = plan_run(config, system, sample);
   const SpeedRamp ramp{config.speed, plan.ramp_time};
   const double l0 = plan.plate_separation;
+  const std::uint64_t fingerprint = sample_fingerprint(sample);
+  const std::filesystem::path curves_file = folder / "curves.csv", breaks_file = folder / "breaks.csv";
 
-  std::filesystem::create_directories(folder);
-  const std::vector<std::string> comments = {
-      fmt::format("rupture {} run: {}", version_string, command),
-      "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
-  CsvStream curves(folder / "curves.csv", comments, curve_header);
-  CsvStream breaks(folder / "breaks.csv", comments, break_header);
+  LoopState loop;
+  nlohmann::json resumes = nlohmann::json::array();
+  std::unique_ptr<CsvStream> curves, breaks;
+  if (resume != nullptr) {
+    const Checkpoint& c = resume->loaded.checkpoint;
+    system.restore_state(c.engine, resume->loaded.file.string());
+    loop = c.loop;
+    curves = std::make_unique<CsvStream>(curves_file, loop.curves_bytes);
+    breaks = std::make_unique<CsvStream>(breaks_file, loop.breaks_bytes);
+    // Earlier resumes stay listed in run.json.
+    try {
+      const auto before = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
+      if (before.contains("resumes") && before["resumes"].is_array()) resumes = before["resumes"];
+    } catch (const std::exception&) {
+    }
+    resumes.push_back({{"command", resume->command},
+                       {"checkpoint", resume->loaded.file.string()},
+                       {"step", c.engine.step},
+                       {"warnings", resume->loaded.warnings}});
+  } else {
+    prepare_folder(folder, config, system);
+  }
 
   nlohmann::json report = {{"tool", "rupture run"},
                            {"version", version_string},
@@ -229,140 +343,239 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
                            {"plan", to_json(plan)},
                            {"threads", config.threads},
                            {"status", "running"}};
-  io::write_json_atomically(folder / "run.json", report);
+  if (!resumes.empty()) report["resumes"] = resumes;
+  try {
+    io::write_json_atomically(folder / "run.json", report);
+  } catch (const RunError& e) {
+    throw InputError(folder.string(), fmt::format("is not writable ({})", e.what()),
+                     "choose a writable folder with -o/--output or output.folder");
+  }
+  if (resume == nullptr) {
+    // The header names the command that started the run; a resume keeps it, so the files of an
+    // interrupted run are byte for byte those of an uninterrupted one.
+    const std::vector<std::string> comments = {
+        fmt::format("rupture {} run: {}", version_string, command),
+        "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
+    curves = std::make_unique<CsvStream>(curves_file, comments, curve_header);
+    breaks = std::make_unique<CsvStream>(breaks_file, comments, break_header);
+  }
 
   RunSummary summary;
-  analysis::Monitor monitor({.window = std::size_t(config.monitor_window),
-                             .drop = config.monitor_drop,
-                             .confirm = std::size_t(config.monitor_confirm)});
-  double max_work = 0.0;
+  summary.max_energy_error = loop.max_energy_error;
+  summary.max_relative_energy_error = loop.max_relative_energy_error;
+  analysis::Monitor monitor(monitor_options(config));
+  if (resume != nullptr && config.monitor) replay(monitor, curves_file, loop.curves_rows);
   const auto strain_now = [&] { return 100.0 * system.top_plate().displacement / l0; };
+  std::string instability;  // what gave the instability away, naming the particle ("" while stable)
   const auto record = [&] {
     const dem::Energies e = system.energies();
     const double w = system.plate_work();
     const double total =
         e.elastic + e.kinetic + e.contact + e.glue + system.released_energy() + system.damping_energy();
-    curves.row({system.time(), double(system.steps_done()), strain_now(), system.force_top(),
-                system.force_bottom(), e.elastic, e.kinetic, e.contact, e.glue, w, system.released_energy(),
-                system.damping_energy(), double(system.intact_bonds()),
-                double(system.bond_count() - system.intact_bonds()), double(e.contacts)});
-    curves.flush();
+    curves->row({system.time(), double(system.steps_done()), strain_now(), system.force_top(),
+                 system.force_bottom(), e.elastic, e.kinetic, e.contact, e.glue, w, system.released_energy(),
+                 system.damping_energy(), double(system.intact_bonds()),
+                 double(system.bond_count() - system.intact_bonds()), double(e.contacts)});
+    curves->flush();
+    ++loop.curves_rows;
+    loop.last_recorded = system.steps_done();
     if (config.monitor) {
       if (const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic))
         fmt::print("monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the force "
                    "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
                    warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
     }
-    max_work = std::max(max_work, std::abs(w));
+    loop.max_work = std::max(loop.max_work, std::abs(w));
     const double error = std::abs(w - total);
     if (std::isfinite(error)) {
       summary.max_energy_error = std::max(summary.max_energy_error, error);
-      if (max_work > 0.0) summary.max_relative_energy_error = summary.max_energy_error / max_work;
+      if (loop.max_work > 0.0) summary.max_relative_energy_error = summary.max_energy_error / loop.max_work;
     }
-    // Unstable: numbers gone non-finite, or energy appearing from nowhere (the integrator's own
-    // conservation broken by half of what was put in, and by more than the energy of a 1e-6 strain,
-    // k_n l0^2 1e-12, so that rounding at rest is never mistaken for it).
+    // Energy appearing from nowhere (kinetic energy growing without the plates' work to pay for
+    // it): the balance broken by half of what was put in, and by more than the energy of a 1e-6
+    // strain, k_n l0^2 1e-12, so that rounding at rest is never mistaken for it.
     const double floor = 1e-12 * params.bond_stiffness * l0 * l0;
-    return std::isfinite(total) && std::isfinite(w) &&
-           !(error > 0.5 * std::max(max_work, total) && error > floor);
+    if (!std::isfinite(total) || !std::isfinite(w))
+      instability = "energies are no longer finite numbers";
+    else if (error > 0.5 * std::max(loop.max_work, total) && error > floor)
+      instability = fmt::format(
+          "the energy balance broke down: the plates did {:.4g} mJ of work but the sample holds and released "
+          "{:.4g} mJ (kinetic {:.4g} mJ)",
+          w, total, e.kinetic);
+    if (instability.empty()) return true;
+    instability += fmt::format(", fastest particle id {}", sample.id[system.sample_index_of_largest_speed()]);
+    return false;
   };
 
-  std::vector<io::PvdEntry> snapshots;
   const auto snapshot = [&] {
     const std::string name = fmt::format("snapshots/step_{:010d}.vtp", system.steps_done());
     std::filesystem::create_directories(folder / "snapshots");
     write_snapshot(system, sample, folder / name,
                    fmt::format("rupture {} run: {}; step {}, strain {:.6g} %", version_string, command,
                                system.steps_done(), strain_now()));
-    snapshots.push_back({system.time(), name});
-    io::write_pvd(folder / "snapshots.pvd", snapshots);
+    loop.snapshots.push_back({system.time(), name});
+    io::write_pvd(folder / "snapshots.pvd", loop.snapshots);
   };
-  if (config.snapshot_interval > 0) snapshot();
+
+  const double wall_before = loop.wall_seconds;
+  const auto wall_now = [&] {
+    return wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  std::filesystem::path last_checkpoint = resume != nullptr ? resume->loaded.file : std::filesystem::path();
+  auto last_checkpoint_time = std::chrono::steady_clock::now();
+  const auto checkpoint = [&] {
+    Checkpoint c;
+    c.version = version_string;
+    c.command = command;
+    c.config_file = config.config_file.string();
+    c.config_json = to_json(config).dump();
+    c.sample_fingerprint = fingerprint;
+    loop.curves_bytes = curves->sync();
+    loop.breaks_bytes = breaks->sync();
+    loop.max_energy_error = summary.max_energy_error;
+    loop.max_relative_energy_error = summary.max_relative_energy_error;
+    loop.wall_seconds = wall_now();
+    c.loop = loop;
+    c.engine = system.save_state();
+    last_checkpoint = save_checkpoint(folder, c, std::size_t(config.checkpoint_keep));
+    last_checkpoint_time = std::chrono::steady_clock::now();
+  };
+  const auto checkpoint_due = [&](std::uint64_t done) {
+    if (config.checkpoint_every > 0 && done % std::uint64_t(config.checkpoint_every) == 0) return true;
+    return config.checkpoint_minutes > 0.0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_time).count() >=
+               60.0 * config.checkpoint_minutes;
+  };
 
   Progress progress("run", double(plan.estimated_steps));
   UnionFind sets;
-  LoadFreeWatch load_free(config.load_free_fraction, config.load_free_strain);
-  bool separated_yet = false, stable = record();
-  double separation_strain = 0.0;
-  std::string separation_rule;
-  std::uint64_t last_recorded = 0;
-  while (stable) {
-    const std::uint64_t n = system.steps_done();
-    if (n >= std::uint64_t(config.max_steps)) {
-      summary.stop_reason = "max_steps";
-      break;
-    }
-    system.step(plan.dt, ramp.at(double(n + 1) * plan.dt));
-    load_free.add(system.force_top());
-    auto& events = system.break_events();
-    if (!events.empty()) {
-      for (const auto& ev : events)
-        breaks.row({double(ev.step), system.time(), strain_now(), double(sample.id[ev.i]),
-                    double(sample.id[ev.j]), ev.midpoint.x, ev.midpoint.y, ev.midpoint.z, ev.rest_length,
-                    ev.energy});
-      breaks.flush();
-      events.clear();
-    }
-    const std::uint64_t done = n + 1;
-    const double strain = strain_now();
-    if (done % std::uint64_t(config.output_interval) == 0) {
+  LoadFreeWatch load_free(config.load_free_fraction, config.load_free_strain, loop.load_free);
+  bool stable = true;
+  int signal = 0;
+  try {
+    if (resume == nullptr) {
+      if (config.snapshot_interval > 0) snapshot();
       stable = record();
-      last_recorded = done;
-      if (!stable) break;
     }
-    if (config.snapshot_interval > 0 && done % std::uint64_t(config.snapshot_interval) == 0) snapshot();
-    if (!separated_yet && done % std::uint64_t(config.separation_check_interval) == 0) {
-      const bool broken = system.intact_bonds() < system.bond_count();
-      if (separated(system, sets))
-        separation_rule = "connectivity";
-      else if (load_free.check(strain, broken))
-        separation_rule = "load_free";
-      separated_yet = !separation_rule.empty();
-      separation_strain = strain;
+    while (stable) {
+      const std::uint64_t n = system.steps_done();
+      if (n >= std::uint64_t(config.max_steps)) {
+        summary.stop_reason = "max_steps";
+        break;
+      }
+      system.step(plan.dt, ramp.at(double(n + 1) * plan.dt));
+      if (const dem::StepMove& move = system.last_step_move(); !(move.fraction <= max_step_move)) {
+        instability = fmt::format("particle id {} moved {:.3g} of its radius in one step (more than {:g})",
+                                  sample.id[move.sample_index], move.fraction, max_step_move);
+        stable = false;
+        break;
+      }
+      load_free.add(system.force_top());
+      auto& events = system.break_events();
+      if (!events.empty()) {
+        for (const auto& ev : events)
+          breaks->row({double(ev.step), system.time(), strain_now(), double(sample.id[ev.i]),
+                       double(sample.id[ev.j]), ev.midpoint.x, ev.midpoint.y, ev.midpoint.z, ev.rest_length,
+                       ev.energy});
+        breaks->flush();
+        events.clear();
+      }
+      const std::uint64_t done = n + 1;
+      const double strain = strain_now();
+      if (done % std::uint64_t(config.output_interval) == 0 && !(stable = record())) break;
+      if (config.snapshot_interval > 0 && done % std::uint64_t(config.snapshot_interval) == 0) snapshot();
+      if (!loop.separated && done % std::uint64_t(config.separation_check_interval) == 0) {
+        const bool broken = system.intact_bonds() < system.bond_count();
+        if (separated(system, sets))
+          loop.separation_rule = "connectivity";
+        else if (load_free.check(strain, broken))
+          loop.separation_rule = "load_free";
+        loop.separated = !loop.separation_rule.empty();
+        loop.separation_strain = strain;
+      }
+      if (loop.separated && strain >= loop.separation_strain + config.extra_strain) {
+        summary.stop_reason = "separated";
+        break;
+      }
+      if (strain >= config.max_strain) {
+        summary.stop_reason = "max_strain";
+        break;
+      }
+      // Everything of this step is written: a checkpoint here resumes at the next one.
+      signal = pending_interrupt();
+      if (signal != 0 || checkpoint_due(done)) {
+        loop.load_free = load_free.state();
+        checkpoint();
+      }
+      if (signal != 0) {
+        summary.stop_reason = "interrupted";
+        break;
+      }
+      progress.update_with(double(done), [&] {
+        return fmt::format("strain {:.3f} %, {} broken", strain, system.bond_count() - system.intact_bonds());
+      });
     }
-    if (separated_yet && strain >= separation_strain + config.extra_strain) {
-      summary.stop_reason = "separated";
-      break;
+    if (stable && signal == 0 && loop.last_recorded != system.steps_done()) stable = record();
+  } catch (const RunError& e) {
+    // A write failed (a full disk): the checkpoints written so far are intact.
+    const std::string next =
+        last_checkpoint.empty()
+            ? "no checkpoint was written yet: start the run again once there is space"
+            : fmt::format("the last checkpoint {} is intact: make room, then continue with `rupture run --resume {}`",
+                          last_checkpoint.string(), folder.string());
+    const std::string message = fmt::format("{}; {}", e.what(), next);
+    report["status"] = "failed";
+    report["stop_reason"] = "write_failed";
+    report["error"] = message;
+    try {
+      io::write_json_atomically(folder / "run.json", report);
+    } catch (const RunError&) {  // the disk that refused the output may refuse this too
     }
-    if (strain >= config.max_strain) {
-      summary.stop_reason = "max_strain";
-      break;
-    }
-    progress.update_with(double(done), [&] {
-      return fmt::format("strain {:.3f} %, {} broken", strain, system.bond_count() - system.intact_bonds());
-    });
+    throw RunError(message);
   }
-  if (stable && last_recorded != system.steps_done()) stable = record();
   progress.finish();
 
   summary.steps = system.steps_done();
   summary.strain = strain_now();
   summary.broken_bonds = system.bond_count() - system.intact_bonds();
-  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  summary.status = stable ? "finished" : "failed";
+  summary.wall_seconds = wall_now();
+  summary.status = !stable ? "failed" : signal != 0 ? "interrupted" : "finished";
   std::string failure;
   if (!stable) {
     summary.stop_reason = "unstable";
-    const std::size_t worst = system.sample_index_of_largest_speed();
+    const bool too_large = plan.dt > plan.critical_dt;
+    // The automatic dt when the given one is above the limit, else half the given one.
+    const double suggested = too_large ? config.dt_safety * plan.critical_dt : 0.5 * plan.dt;
+    const std::string cause =
+        too_large ? fmt::format("dt = {:.3g} s is too large for k_n = {:g} N/mm and the stiffest, lightest particle "
+                                "(springs summing to {:.3g} N/mm on {:.3g} g: critical dt {:.3g} s)",
+                                plan.dt, config.bond_stiffness, plan.stiffest_spring_sum,
+                                units::mass_to_grams(plan.stiffest_mass), plan.critical_dt)
+                  : fmt::format("the ramp is too abrupt for b_d = {:g} (loading.ramp_steps = {} to {:g} mm/s), or "
+                                "contacts {:g} times as stiff as the bonds outrun dt = {:.3g} s",
+                                config.break_distance, config.ramp_steps, config.speed,
+                                config.contact_stiffness_factor, plan.dt);
     failure = fmt::format(
-        "unstable at step {} (t = {:.6g} s, strain {:.4g} %): the energy balance broke down, fastest "
-        "particle id {}; "
-        "likely cause: dt = {:.3g} s is too large for the stiffest springs (critical dt {:.3g} s{}) or the "
-        "start is "
-        "too abrupt (loading.ramp_steps = {}); try time.dt = {:.3g} or a longer ramp",
-        summary.steps, system.time(), summary.strain, sample.id[worst], plan.dt, plan.critical_dt,
-        plan.dt > plan.critical_dt ? ", exceeded" : "", config.ramp_steps,
-        0.5 * std::min(plan.dt, plan.critical_dt));
+        "unstable at step {} (t = {:.6g} s, strain {:.4g} %): {}; likely cause: {}; "
+        "suggested dt = {:.3g} s: try time.dt = {:.3g}{}",
+        summary.steps, system.time(), summary.strain, instability, cause, suggested,
+        suggested, too_large ? " or \"auto\"" : " or a longer loading.ramp_steps");
   }
   const dem::StageTimes& t = system.stage_times();
   report["status"] = summary.status;
   report["stop_reason"] = summary.stop_reason;
   if (!failure.empty()) report["error"] = failure;
+  if (signal != 0) {
+    summary.checkpoint = last_checkpoint;
+    summary.signal = signal;
+    report["checkpoint"] = last_checkpoint.string();
+    report["resume_with"] = fmt::format("rupture run --resume {}", folder.string());
+  }
   report["steps"] = summary.steps;
   report["final_strain_percent"] = summary.strain;
   report["separation_strain_percent"] =
-      separated_yet ? nlohmann::json(separation_strain) : nlohmann::json(nullptr);
-  report["separation_rule"] = separated_yet ? nlohmann::json(separation_rule) : nlohmann::json(nullptr);
+      loop.separated ? nlohmann::json(loop.separation_strain) : nlohmann::json(nullptr);
+  report["separation_rule"] = loop.separated ? nlohmann::json(loop.separation_rule) : nlohmann::json(nullptr);
   report["broken_bonds"] = summary.broken_bonds;
   report["monitor"] = config.monitor ? analysis::to_json(monitor.summary()) : nlohmann::json(nullptr);
   if (config.monitor) report["monitor"]["units"] = {{"strain", "%"}, {"force", "N"}, {"energy", "mJ"}};
@@ -378,12 +591,62 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
                              {"plates", t.plates},
                              {"breaks", t.breaks}};
   report["neighbour_rebuilds"] = system.neighbour_rebuilds();
-  report["snapshots"] = snapshots.size();
+  report["snapshots"] = loop.snapshots.size();
   report["memory_bytes_per_particle"] =
       double(system.memory_bytes()) / double(std::max<std::size_t>(1, sample.size()));
   io::write_json_atomically(folder / "run.json", report);
+  // A finished or unstable run has nothing to resume (the same config would blow up again):
+  // its checkpoints go, and the folder takes a new run.
+  if (signal == 0) {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder / "checkpoints", ignored);
+  }
   if (!stable) throw RunError(failure);
   return summary;
+}
+
+}  // namespace
+
+RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
+                          const std::string& command) {
+  return execute(config, sample, folder, command, nullptr);
+}
+
+RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command) {
+  if (std::filesystem::exists(folder / "run.json")) {
+    nlohmann::json before;
+    try {
+      before = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
+    } catch (const nlohmann::json::exception&) {
+    }
+    const std::string status = before.value("status", "");
+    if (status == "finished" || (status == "failed" && before.value("stop_reason", "") == "unstable"))
+      throw InputError((folder / "run.json").string(),
+                       fmt::format("the run already ended ({}, {}); there is nothing to resume", status,
+                                   before.value("stop_reason", "")),
+                       "start a new run with `rupture run CONFIG.toml`");
+  }
+  const LoadedCheckpoint loaded = load_newest_checkpoint(folder);
+  for (const auto& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
+  const Checkpoint& c = loaded.checkpoint;
+  const std::string source = loaded.file.string();
+  if (c.version != version_string)
+    fmt::print(stderr, "warning: {} was written by rupture {}, this is {}: the continued run may differ in the last bits\n",
+               source, c.version, version_string);
+  nlohmann::json resolved;
+  try {
+    resolved = nlohmann::json::parse(c.config_json);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(source + ": config", fmt::format("is not JSON ({})", e.what()), "start the run again");
+  }
+  const RunConfig config = config_from_json(resolved, c.config_file);
+  const Sample sample = resolve_sample(config);
+  if (sample_fingerprint(sample) != c.sample_fingerprint)
+    throw InputError(source + ": sample_fingerprint",
+                     "the sample differs from the one the run started from (the sample file changed?)",
+                     "restore the sample the run began with, or start the run again");
+  const ResumePoint point{loaded, command};
+  return execute(config, sample, folder, c.command, &point);
 }
 
 }  // namespace rupture::loading

@@ -41,19 +41,37 @@ RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sampl
 nlohmann::json to_json(const RunPlan& plan);
 
 struct RunSummary {
-  std::string status;       // "finished" or "failed"
-  std::string stop_reason;  // "separated", "max_strain", "max_steps", "unstable"
+  std::string status;       // "finished", "failed" or "interrupted"
+  std::string stop_reason;  // "separated", "max_strain", "max_steps", "unstable", "interrupted"
   std::uint64_t steps = 0;
   double strain = 0.0;  // % at the end
   double wall_seconds = 0.0;
   double max_energy_error = 0.0;  // mJ: max |W - (E_e + E_k + E_contact + E_glue + E_released + E_damped)|
   double max_relative_energy_error = 0.0;  // 1: the above / largest W so far
   std::size_t broken_bonds = 0;
+  // An interrupted run (SIGINT/SIGTERM, see loading/interrupt): the signal and the checkpoint
+  // written after the step it came in.
+  int signal = 0;
+  std::filesystem::path checkpoint;
 };
 
-// Runs to a stop rule, writing into `folder`. `command` is recorded in run.json. An unstable run
-// keeps what it wrote, marks run.json failed and throws RunError naming the cause and a dt.
+// Runs to a stop rule, writing into `folder`. `command` is recorded in run.json and in the header
+// of curves.csv and breaks.csv. Checks before the first step that the folder can be written, has
+// room for the checkpoints and holds no unfinished run (InputError). Writes a checkpoint every
+// checkpoint.every steps or checkpoint.minutes, and after the step in which SIGINT/SIGTERM came
+// (if install_interrupt_handlers() was called), then returns with status "interrupted".
+// An unstable run keeps what it wrote, marks run.json failed and throws RunError naming the step,
+// the particle, the likely cause and a dt; a failed write throws RunError naming the file and the
+// last intact checkpoint. A finished or unstable run removes its checkpoints.
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
                           const std::string& command);
+
+// Continues the run in `folder` from its newest readable checkpoint (warning on stderr about each
+// damaged newer one): the config and command stored there, the output files cut back to the
+// checkpoint's byte counts and appended to, so that curves.csv and breaks.csv come out
+// byte-identical to an uninterrupted run. `command` (the resuming command line) is listed under
+// "resumes" in run.json. Throws InputError when there is no readable checkpoint, the run already
+// ended, or the sample changed since the run began.
+RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command);
 
 }  // namespace rupture::loading

@@ -53,7 +53,7 @@ TEST(Config, ResolvedJsonHasEveryKey) {
   EXPECT_EQ(json["time"]["dt"], "auto");
   EXPECT_EQ(json["sample"]["density"], nullptr);
   EXPECT_EQ(json["monitor"]["window"], 41);
-  EXPECT_EQ(json.size(), 10u) << json.dump();
+  EXPECT_EQ(json.size(), 11u) << json.dump();
 }
 
 TEST(Config, BadInputIsRejectedWithFileKeyAndFix) {

@@ -7,12 +7,14 @@
 #include <omp.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/error.hpp"
 #include "dem/system.hpp"
 #include "io/atomic_file.hpp"
 #include "loading/checkpoint.hpp"
+#include "loading/config.hpp"
 #include "loading/ramp.hpp"
 #include "sample/generator.hpp"
 #include "sample/lattice.hpp"
@@ -55,8 +57,9 @@ Checkpoint checkpoint_of(const dem::System& system) {
   c.sample_fingerprint = 42;
   c.loop.curves_bytes = 1234;
   c.loop.separation_rule = "connectivity";
-  c.loop.load_free_active = true;
-  c.loop.load_free_since = 1.5;
+  c.config_file = "configs/test.toml";
+  c.loop.curves_rows = 17;
+  c.loop.load_free = {.sum = 3.5, .count = 7, .last_strain = 1.25, .peak = 9.0, .load_free = true, .free_since = 1.5};
   c.loop.snapshots = {{0.0, "snapshots/step_0000000000.vtp"}, {1e-4, "snapshots/step_0000000500.vtp"}};
   c.engine = system.save_state();
   return c;
@@ -141,8 +144,12 @@ TEST(Checkpoint, EveryFieldRoundTrips) {
   EXPECT_EQ(r.sample_fingerprint, 42u);
   EXPECT_EQ(r.loop.curves_bytes, 1234u);
   EXPECT_EQ(r.loop.separation_rule, "connectivity");
-  EXPECT_TRUE(r.loop.load_free_active);
-  EXPECT_EQ(r.loop.load_free_since, 1.5);
+  EXPECT_EQ(r.config_file, "configs/test.toml");
+  EXPECT_EQ(r.loop.curves_rows, 17u);
+  EXPECT_EQ(r.loop.load_free.count, 7u);
+  EXPECT_EQ(r.loop.load_free.peak, 9.0);
+  EXPECT_TRUE(r.loop.load_free.load_free);
+  EXPECT_EQ(r.loop.load_free.free_since, 1.5);
   ASSERT_EQ(r.loop.snapshots.size(), 2u);
   EXPECT_EQ(r.loop.snapshots[1].time, 1e-4);
   EXPECT_EQ(r.loop.snapshots[1].file, "snapshots/step_0000000500.vtp");
@@ -244,6 +251,44 @@ TEST(Checkpoint, FolderKeepsTheNewestTwoAndFallsBackPastADamagedOne) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("holds no readable checkpoint"));
   }
+}
+
+// A resume rebuilds the run from the config stored as JSON: every key must come back unchanged.
+TEST(Checkpoint, StoredConfigReadsBackToTheSameRun) {
+  const RunConfig c = parse_config(
+      "[sample]\nfile = \"tissue.txt\"\ndensity = 3e-4\n[bonds]\nstiffness = 123.25\nbreak_rule = \"relative\"\n"
+      "[time]\ndt = 1.5e-8\n[checkpoint]\nevery = 5000\nminutes = 7.5\nkeep = 3\n",
+      "configs/run.toml");
+  const nlohmann::json stored = nlohmann::json::parse(to_json(c).dump());
+  const RunConfig back = config_from_json(stored, "configs/run.toml");
+  EXPECT_EQ(to_json(back), to_json(c));
+  EXPECT_EQ(back.sample_file, "tissue.txt");
+  EXPECT_EQ(back.config_file, "configs/run.toml") << "relative sample paths resolve against it";
+  EXPECT_EQ(back.dt, 1.5e-8);
+  EXPECT_EQ(back.checkpoint_keep, 3);
+  EXPECT_EQ(back.checkpoint_minutes, 7.5);
+  // An automatic dt and the sample's own density (null) come back as such.
+  const RunConfig defaults = parse_config("[sample]\npreset = \"tissue-small\"\n", "d.toml");
+  const RunConfig defaults_back = config_from_json(to_json(defaults), "d.toml");
+  EXPECT_FALSE(defaults_back.dt.has_value());
+  EXPECT_FALSE(defaults_back.density.has_value());
+  EXPECT_EQ(defaults_back.checkpoint_every, 0) << "by wall time only unless asked";
+}
+
+TEST(Checkpoint, CheckpointKeysAreChecked) {
+  const auto message = [](const std::string& text) {
+    try {
+      parse_config("[sample]\npreset = \"tissue-small\"\n[checkpoint]\n" + text + "\n", "c.toml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_THAT(message("keep = 0"), HasSubstr("c.toml: checkpoint.keep: must be between 1 and 100"));
+  EXPECT_THAT(message("every = -1"), HasSubstr("c.toml: checkpoint.every: must be >= 0 (steps)"));
+  EXPECT_THAT(message("minutes = -2"), HasSubstr("c.toml: checkpoint.minutes: must be >= 0"));
+  EXPECT_THAT(message("often = 3"), HasSubstr("c.toml: checkpoint.often: unknown key"));
+  EXPECT_EQ(message("every = 100\nminutes = 0"), "(accepted)");
 }
 
 }  // namespace

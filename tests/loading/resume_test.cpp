@@ -1,0 +1,312 @@
+// `rupture run` killed, interrupted, starved of disk and blown up, end to end. A run killed with
+// SIGKILL, or stopped by SIGTERM, or by a failing write, continues with `rupture run --resume` to
+// curves.csv and breaks.csv byte-identical to an uninterrupted run (also past a damaged newest
+// checkpoint); a deliberately too-large dt stops as unstable with the suggested dt; an unwritable
+// output folder is refused before the first step.
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "dem/system.hpp"
+#include "io/atomic_file.hpp"
+#include "loading/checkpoint.hpp"
+#include "loading/config.hpp"
+#include "loading/run.hpp"
+#include "support/tool.hpp"
+
+extern char** environ;
+
+namespace rupture::loading {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using rupture::testing::slurp;
+using rupture::testing::TempDir;
+
+const std::string block_config = std::string(RUPTURE_EXAMPLES_DIR) + "block.toml";
+
+// The example block made 8 x 24 x 4 (768 particles) and pulled slower: about 25,000 steps to
+// separation with a curve row every 20 and a checkpoint every 1000 steps. Every run is started
+// from its own folder with `-o run`, so that all of them record the same command line.
+std::vector<std::string> run_args(std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"run",   block_config,      "-o",    "run",
+                                   "--set", "sample.lattice_cells=[8, 24, 4]",
+                                   "--set", "loading.speed=100", "--set", "output.interval=20",
+                                   "--set", "checkpoint.every=1000"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+struct Child {
+  pid_t pid = -1;
+  fs::path out, err;
+};
+
+// Starts `rupture ARGS` in `cwd` (CI=1: no progress line). A `file_limit` (bytes) caps the size of
+// every file it writes (RLIMIT_FSIZE, with SIGXFSZ ignored): writes past it fail as on a full disk.
+Child start(const fs::path& cwd, const std::vector<std::string>& args, rlim_t file_limit = RLIM_INFINITY) {
+  static int count = 0;
+  Child child{-1, cwd / fmt::format("rupture_{}.out", count), cwd / fmt::format("rupture_{}.err", count)};
+  ++count;
+  // Everything the child needs is prepared before fork: it only calls async-signal-safe functions.
+  std::vector<std::string> words = {RUPTURE_BINARY};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::string ci = "CI=1";
+  std::vector<char*> envp = {ci.data()};
+  for (char** e = environ; *e != nullptr; ++e) envp.push_back(*e);
+  envp.push_back(nullptr);
+  const std::string dir = cwd.string(), out = child.out.string(), err = child.err.string();
+  child.pid = fork();
+  if (child.pid == 0) {
+    const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int in = open("/dev/null", O_RDONLY);
+    if (o < 0 || e < 0 || in < 0 || chdir(dir.c_str()) != 0) _exit(126);
+    dup2(in, 0);
+    dup2(o, 1);
+    dup2(e, 2);
+    if (file_limit != RLIM_INFINITY) {
+      signal(SIGXFSZ, SIG_IGN);
+      const rlimit limit{file_limit, file_limit};
+      setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    execve(argv[0], argv.data(), envp.data());
+    _exit(127);
+  }
+  EXPECT_GT(child.pid, 0) << "fork failed";
+  return child;
+}
+
+struct Ended {
+  int exit_code = -1;  // -1 when ended by a signal
+  int signal = 0;
+  std::string out, err;
+};
+
+Ended wait_for_end(const Child& child) {
+  int status = 0;
+  waitpid(child.pid, &status, 0);
+  Ended ended;
+  if (WIFEXITED(status)) ended.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) ended.signal = WTERMSIG(status);
+  ended.out = slurp(child.out);
+  ended.err = slurp(child.err);
+  return ended;
+}
+
+Ended run_to_end(const fs::path& cwd, const std::vector<std::string>& args) {
+  return wait_for_end(start(cwd, args));
+}
+
+// Waits until `ready()` holds while the child still runs (the child ending first fails the test:
+// the run must be caught midway).
+bool wait_until(const Child& child, const std::function<bool()>& ready) {
+  while (!ready()) {
+    int status = 0;
+    if (waitpid(child.pid, &status, WNOHANG) == child.pid) {
+      ADD_FAILURE() << "the run ended before it could be stopped midway";
+      return false;
+    }
+    usleep(1000);
+  }
+  return true;
+}
+
+// Waits for the checkpoint of `step` and for curves.csv to grow past the bytes it recorded, so that
+// the resume has rows to cut away.
+bool wait_for_checkpoint(const Child& child, const fs::path& folder, std::uint64_t step) {
+  const fs::path file = checkpoint_path(folder, step);
+  if (!wait_until(child, [&] { return fs::exists(file); })) return false;
+  const std::uint64_t recorded = read_checkpoint(file).loop.curves_bytes;
+  return wait_until(child, [&] { return fs::file_size(folder / "curves.csv") > recorded; });
+}
+
+// The uninterrupted run, in `dir`/reference/run.
+fs::path reference_run(const TempDir& dir) {
+  const fs::path cwd = dir / "reference";
+  fs::create_directories(cwd);
+  const Ended r = run_to_end(cwd, run_args());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("finished: separated"));
+  return cwd / "run";
+}
+
+void expect_same_outputs(const fs::path& resumed, const fs::path& reference) {
+  for (const char* name : {"curves.csv", "breaks.csv"}) {
+    const std::string a = slurp(resumed / name), b = slurp(reference / name);
+    EXPECT_GT(b.size(), 1000u) << name;
+    EXPECT_TRUE(a == b) << name << " differs from the uninterrupted run (" << a.size() << " vs " << b.size()
+                        << " bytes)";
+  }
+  const auto a = nlohmann::json::parse(slurp(resumed / "run.json"));
+  const auto b = nlohmann::json::parse(slurp(reference / "run.json"));
+  EXPECT_EQ(a["status"], "finished");
+  for (const char* key : {"stop_reason", "steps", "final_strain_percent", "separation_strain_percent",
+                          "broken_bonds", "monitor", "energy_balance", "command"})
+    EXPECT_EQ(a[key], b[key]) << key;
+  EXPECT_FALSE(fs::exists(resumed / "checkpoints")) << "a finished run removes its checkpoints";
+}
+
+TEST(Resume, KilledRunContinuesToByteIdenticalFiles) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path cwd = dir / "killed", folder = cwd / "run";
+  fs::create_directories(cwd);
+  const Child child = start(cwd, run_args());
+  ASSERT_TRUE(wait_for_checkpoint(child, folder, 2000));
+  kill(child.pid, SIGKILL);
+  const Ended killed = wait_for_end(child);
+  ASSERT_EQ(killed.signal, SIGKILL);
+  EXPECT_LT(slurp(folder / "curves.csv").size(), slurp(reference / "curves.csv").size());
+
+  // Starting afresh over the unfinished run is refused, pointing at --resume.
+  const Ended again = run_to_end(cwd, run_args());
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_THAT(again.err, HasSubstr("holds the checkpoints of an unfinished run"));
+  EXPECT_THAT(again.err, HasSubstr("rupture run --resume run"));
+
+  const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(resumed.err, "");
+  expect_same_outputs(folder, reference);
+  const auto report = nlohmann::json::parse(slurp(folder / "run.json"));
+  ASSERT_EQ(report["resumes"].size(), 1u);
+  EXPECT_GE(report["resumes"][0]["step"].get<std::uint64_t>(), 2000u);
+  EXPECT_EQ(report["resumes"][0]["command"], "rupture run --resume run");
+
+  const Ended twice = run_to_end(cwd, {"run", "--resume", "run"});
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_THAT(twice.err, HasSubstr("the run already ended (finished, separated)"));
+}
+
+TEST(Resume, DamagedNewestCheckpointFallsBackToTheOlderWithAWarning) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path cwd = dir / "killed", folder = cwd / "run";
+  fs::create_directories(cwd);
+  const Child child = start(cwd, run_args());
+  ASSERT_TRUE(wait_for_checkpoint(child, folder, 3000));
+  kill(child.pid, SIGKILL);
+  ASSERT_EQ(wait_for_end(child).signal, SIGKILL);
+
+  const auto files = list_checkpoints(folder);
+  ASSERT_EQ(files.size(), 2u) << "the newest two are kept";
+  const std::uint64_t older = read_checkpoint(files[1]).engine.step;
+  std::string bytes = slurp(files[0]);
+  bytes[bytes.size() / 2] ^= 0x20;  // one flipped bit in the engine state
+  io::write_file_atomically(files[0], bytes);
+
+  const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_THAT(resumed.err, HasSubstr("warning: skipping unreadable checkpoint"));
+  EXPECT_THAT(resumed.err, HasSubstr(files[0].filename().string() + ": checksum"));
+  expect_same_outputs(folder, reference);
+  const auto report = nlohmann::json::parse(slurp(folder / "run.json"));
+  EXPECT_EQ(report["resumes"][0]["step"].get<std::uint64_t>(), older);
+  EXPECT_EQ(report["resumes"][0]["warnings"].size(), 1u);
+}
+
+TEST(Resume, SigtermWritesACheckpointAndExitsWithTheResumeCommand) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path cwd = dir / "stopped", folder = cwd / "run";
+  fs::create_directories(cwd);
+  const Child child = start(cwd, run_args());
+  ASSERT_TRUE(wait_for_checkpoint(child, folder, 1000));
+  kill(child.pid, SIGTERM);
+  const Ended stopped = wait_for_end(child);
+  EXPECT_EQ(stopped.exit_code, 128 + SIGTERM) << stopped.err;
+  EXPECT_THAT(stopped.err, HasSubstr("interrupted by SIGTERM after step"));
+  EXPECT_THAT(stopped.err, HasSubstr("continue with `rupture run --resume run`"));
+  const auto report = nlohmann::json::parse(slurp(folder / "run.json"));
+  EXPECT_EQ(report["status"], "interrupted");
+  const std::uint64_t step = report["steps"];
+  EXPECT_GT(step, 1000u);
+  EXPECT_EQ(list_checkpoints(folder).front(), checkpoint_path(folder, step)) << "the final checkpoint is newest";
+
+  const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_same_outputs(folder, reference);
+}
+
+TEST(Resume, FailedWriteKeepsTheLastCheckpointAndTheRunResumes) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path cwd = dir / "full", folder = cwd / "run";
+  fs::create_directories(cwd);
+  // Files may grow to 150 kB: the checkpoints (about 127 kB) fit, the final curves.csv
+  // (about 260 kB) does not.
+  const std::uint64_t limit = 150000;
+  ASSERT_GT(fs::file_size(reference / "curves.csv"), limit);
+  const Ended full = wait_for_end(start(cwd, run_args(), limit));
+  EXPECT_EQ(full.exit_code, 1);
+  EXPECT_THAT(full.err, HasSubstr("curves.csv: write failed"));
+  EXPECT_THAT(full.err, HasSubstr("is intact: make room, then continue with `rupture run --resume run`"));
+  const auto report = nlohmann::json::parse(slurp(folder / "run.json"));
+  EXPECT_EQ(report["status"], "failed");
+  EXPECT_EQ(report["stop_reason"], "write_failed");
+  const LoadedCheckpoint last = load_newest_checkpoint(folder);
+  EXPECT_TRUE(last.warnings.empty());
+  EXPECT_LE(last.checkpoint.loop.curves_bytes, limit);
+  EXPECT_THAT(full.err, HasSubstr(last.file.filename().string()));
+
+  const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_same_outputs(folder, reference);
+}
+
+TEST(Resume, TooLargeDtIsStoppedAsUnstableWithTheSuggestedDt) {
+  TempDir dir;
+  const RunConfig config = load_config(block_config);
+  const Sample sample = resolve_sample(config);
+  const dem::System system(sample, config.dem_params(sample.density));
+  // 12 times the stability limit, let through by time.allow_unstable_dt.
+  const double dt = 12.0 * system.critical_dt();
+  const Ended r = run_to_end(dir.path(), {"run", block_config, "-o", "run", "--set", fmt::format("time.dt={}", dt),
+                                          "--set", "time.allow_unstable_dt=true", "--set", "checkpoint.every=2"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("unstable at step"));
+  EXPECT_THAT(r.err, HasSubstr("of its radius in one step"));
+  EXPECT_THAT(r.err, HasSubstr("particle id"));
+  EXPECT_THAT(r.err, HasSubstr("is too large for k_n = 1000 N/mm"));
+  // The suggestion is the automatic dt: time.safety (0.4) times the critical dt.
+  const std::string suggested = fmt::format("suggested dt = {:.3g} s", 0.4 * system.critical_dt());
+  EXPECT_THAT(r.err, HasSubstr(suggested));
+  const auto report = nlohmann::json::parse(slurp(dir / "run" / "run.json"));
+  EXPECT_EQ(report["status"], "failed");
+  EXPECT_EQ(report["stop_reason"], "unstable");
+  EXPECT_THAT(report["error"].get<std::string>(), HasSubstr(suggested));
+  EXPECT_THAT(slurp(dir / "run" / "curves.csv"), HasSubstr("\n0,0,0,")) << "the rows so far are kept";
+  EXPECT_FALSE(fs::exists(dir / "run" / "checkpoints")) << "an unstable run cannot be resumed";
+}
+
+TEST(Resume, UnwritableOutputFolderIsRefusedBeforeTheRun) {
+  TempDir dir;
+  io::write_file_atomically(dir / "occupied", "a file where the folder should go\n");
+  const Ended r = run_to_end(dir.path(), {"run", block_config, "-o", "occupied/run"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("occupied/run: cannot create the output folder"));
+  EXPECT_THAT(r.err, HasSubstr("choose a writable folder"));
+
+  const Ended none = run_to_end(dir.path(), {"run", "--resume", "nowhere"});
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_THAT(none.err, HasSubstr("holds no checkpoint"));
+}
+
+}  // namespace
+}  // namespace rupture::loading
