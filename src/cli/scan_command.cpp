@@ -51,10 +51,10 @@ long long task_index(const ScanOptions& o) {
 }
 
 void print_plan(const scan::Plan& plan) {
-  fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>11}\n", "point", "folder", "k_n[N/mm]", "b_d[mm]",
+  fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13}\n", "point", "folder", "k_n[N/mm]", "b_d[mm]",
              "ramp_steps", "max_strain[%]");
   for (const auto& p : plan.points)
-    fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>11}\n", p.index, p.name, p.k_n, p.b_d, p.ramp_steps,
+    fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13}\n", p.index, p.name, p.k_n, p.b_d, p.ramp_steps,
                p.max_strain);
   fmt::print("{} points into {}; a job array needs --array=0-{}\n", plan.points.size(), plan.folder.string(),
              plan.points.size() - 1);

@@ -1,6 +1,6 @@
 // Scans under MPI: `mpirun -n 2 --oversubscribe rupture scan` farms the small block scan out across
-// two ranks and gives the same physics columns, byte for byte, as the scan run locally; restarted, it
-// finds every point finished and runs nothing.
+// two ranks and gives the same physics columns, byte for byte, as the scan run locally; restarted through
+// examples/slurm/scan-mpi.sbatch, it finds every point finished and runs nothing.
 #include <cstdlib>
 #include <string>
 
@@ -44,20 +44,23 @@ TEST(ScanMpi, TwoRanksGiveTheSamePhysicsAsOneProcess) {
   const auto local = run_rupture("scan " + config + " -o " + shell_quoted(dir / "local") + " --jobs 1");
   ASSERT_EQ(local.exit_code, 0) << local.err;
 
-  const auto farmed = mpirun(2, "scan " + config + " -o " + shell_quoted(dir / "mpi"), dir);
+  const auto farmed = mpirun(2, "scan " + config + " -o " + shell_quoted(dir / "scan-block"), dir);
   ASSERT_EQ(farmed.exit_code, 0) << farmed.out;
   EXPECT_NE(farmed.out.find("6 to run on 2 MPI ranks"), std::string::npos) << farmed.out;
-  EXPECT_EQ(physics(dir / "local" / "results.csv"), physics(dir / "mpi" / "results.csv"));
-  const auto scan = nlohmann::json::parse(slurp(dir / "mpi" / "scan.json"));
+  EXPECT_EQ(physics(dir / "local" / "results.csv"), physics(dir / "scan-block" / "results.csv"));
+  const auto scan = nlohmann::json::parse(slurp(dir / "scan-block" / "scan.json"));
   EXPECT_EQ(scan["mpi_ranks"], 2);
   EXPECT_EQ(scan["counts"]["ok"], 6);
 
-  // Restarted under MPI: every point is finished, none is run again.
-  const auto again = mpirun(2, "scan " + config + " -o " + shell_quoted(dir / "mpi"), dir);
+  // Restarted under MPI as the example batch script does it: every point is finished, none runs again.
+  const auto again = test_support::run_script(
+      "scan-mpi.sbatch", dir.path(),
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ASAN_OPTIONS=detect_leaks=0 MPIRUN='" RUPTURE_MPIEXEC
+      " -n 2 --oversubscribe' SCAN_CONFIG=" + config + " SLURM_CPUS_PER_TASK=1");
   ASSERT_EQ(again.exit_code, 0) << again.out;
   EXPECT_NE(again.out.find("0 to run"), std::string::npos) << again.out;
-  EXPECT_FALSE(std::filesystem::exists(dir / "mpi" / "points" / "kn_100_bd_0.002" / "attempt-2"));
-  EXPECT_EQ(physics(dir / "local" / "results.csv"), physics(dir / "mpi" / "results.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "scan-block" / "points" / "kn_100_bd_0.002" / "attempt-2"));
+  EXPECT_EQ(physics(dir / "local" / "results.csv"), physics(dir / "scan-block" / "results.csv"));
 }
 
 }  // namespace

@@ -72,6 +72,21 @@ TEST(ScanPlan, RulesScaleTheRampAndTheStopWithBreakingDistance) {
   EXPECT_FALSE(run.dt.has_value());  // dt = "auto": from k_n and the lightest particle
 }
 
+TEST(ScanPlan, PaperScanSpansTheRangesOfSectionFive) {
+  // The paper's scan: k_n from 10 to 10^7 N/mm, b_d from 10^-3 to 5 mm; the ramp 10^4 steps where
+  // bonds break at large strains and up to 10^6 steps where they break at small ones.
+  const Plan plan = make_plan(load_scan_config(examples + "scan-tissue.toml"), 1.0);
+  ASSERT_EQ(plan.points.size(), 195u);
+  EXPECT_EQ(plan.points.front().name, "kn_10_bd_0.001");
+  EXPECT_EQ(plan.points.back().name, "kn_10000000_bd_5");
+  EXPECT_EQ(plan.points.front().ramp_steps, 1000000);
+  EXPECT_EQ(plan.points.back().ramp_steps, 10000);
+  // Stop strain 5 x the first-break strain 100 b_d / r0 (r0 = 1 mm here), within [2 %, 600 %].
+  EXPECT_DOUBLE_EQ(plan.points.front().max_strain, 2.0);
+  EXPECT_DOUBLE_EQ(plan.points.back().max_strain, 600.0);
+  EXPECT_NEAR(plan.points[7].max_strain, 5 * 100 * plan.points[7].b_d, 1e-5 * plan.points[7].max_strain);  // 6 digits
+}
+
 TEST(ScanPlan, ListedPointsFollowTheGridWithoutDuplicates) {
   TempDir dir;
   write(dir / "s.toml",
@@ -250,27 +265,33 @@ TEST(ScanCommand, KilledMidwayAndRestartedGivesTheSameResults) {
 
 TEST(ScanCommand, ArrayTasksThenCollectGiveTheSameResults) {
   TempDir dir;
-  const std::string config = shell_quoted(examples + "scan-block.toml");
-  const auto whole = run_rupture("scan " + config + " -o " + shell_quoted(dir / "whole"));
+  const std::string config = examples + "scan-block.toml";
+  const auto whole = run_rupture("scan " + shell_quoted(config) + " -o " + shell_quoted(dir / "whole"));
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
-  for (int i = 5; i >= 0; --i) {
-    // Task 2 through the scheduler's variable, the rest through the option.
-    if (i == 2) ::setenv("SLURM_ARRAY_TASK_ID", "2", 1);
-    const auto task = run_rupture("scan " + config + " -o " + shell_quoted(dir / "array") +
-                                  (i == 2 ? std::string() : " --task-index " + std::to_string(i)));
-    ::unsetenv("SLURM_ARRAY_TASK_ID");
+  // Tasks 5, 4, 3 by the option, in any order; the scan folder is [scan] output under the working dir.
+  const auto array = dir / "scan-block";
+  for (int i = 5; i >= 3; --i) {
+    const auto task = run_rupture("scan " + shell_quoted(config) + " -o " + shell_quoted(array) +
+                                  " --task-index " + std::to_string(i));
     ASSERT_EQ(task.exit_code, 0) << task.err;
-    if (i == 5) {
-      EXPECT_FALSE(
-          std::filesystem::exists(dir / "array" / "results.csv"));  // tasks leave the aggregate to --collect
-    }
   }
-  const auto past = run_rupture("scan " + config + " -o " + shell_quoted(dir / "array") + " --task-index 6");
+  EXPECT_FALSE(std::filesystem::exists(array / "results.csv"));  // tasks leave the aggregate to --collect
+  const auto part = run_rupture("scan --status " + shell_quoted(array));
+  EXPECT_NE(part.out.find("6 points: 3 done, 0 failed, 0 running, 3 pending"), std::string::npos) << part.out;
+  // Tasks 2, 1, 0 as the example batch script runs them, the index from SLURM_ARRAY_TASK_ID.
+  for (int i = 2; i >= 0; --i) {
+    const auto task = test_support::run_script(
+        "scan-array.sbatch", dir.path(),
+        "SLURM_ARRAY_TASK_ID=" + std::to_string(i) + " SLURM_CPUS_PER_TASK=1 SCAN_CONFIG=" + shell_quoted(config));
+    ASSERT_EQ(task.exit_code, 0) << task.out;
+  }
+  const auto past = run_rupture("scan " + shell_quoted(config) + " -o " + shell_quoted(array) + " --task-index 6");
   EXPECT_EQ(past.exit_code, 2);
   EXPECT_NE(past.err.find("--array=0-5"), std::string::npos) << past.err;
-  const auto collect = run_rupture("scan --collect " + shell_quoted(dir / "array"));
-  ASSERT_EQ(collect.exit_code, 0) << collect.err;
-  EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(dir / "array" / "results.csv"));
+  const auto collect = test_support::run_script("scan-collect.sbatch", dir.path(), "SCAN_FOLDER=scan-block");
+  ASSERT_EQ(collect.exit_code, 0) << collect.out;
+  EXPECT_NE(collect.out.find("6 points: 6 done"), std::string::npos) << collect.out;
+  EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(array / "results.csv"));
 }
 
 TEST(ScanCommand, FailedPointsAreRecordedAndTheScanGoesOn) {
