@@ -1,9 +1,10 @@
-// cli/plot_command: `rupture plot DIR_OR_FILE [--out FOLDER] [--format png|svg|both]` — the paper's
-// figures from a run folder or an FBM curve CSV, via gnuplot (src/figures). Exit 0 drawn, 2 bad input,
-// 1 gnuplot missing or complaining.
+// cli/plot_command: `rupture plot INPUT [--out FOLDER] [--format png|svg|both] [--snapshots-at X,...]` —
+// the paper's figures from a run folder, an FBM curve CSV or a scan folder, via gnuplot (src/figures).
+// Exit 0 drawn, 2 bad input, 1 gnuplot missing or complaining.
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -13,21 +14,32 @@
 namespace rupture::cli {
 
 void add_plot_command(CLI::App& app, int& /*exit_code*/) {
-  struct PlotOptions {
+  struct PlotArguments {
     std::string input, out, format = "both";
+    std::vector<double> snapshot_strains;
   };
-  auto options = std::make_shared<PlotOptions>();
+  auto options = std::make_shared<PlotArguments>();
   auto* command = app.add_subcommand(
-      "plot", "Draw the loading-curve figures (PNG/SVG) of a run folder or an FBM curve CSV with gnuplot");
-  command->add_option("input", options->input, "Run folder (curves.csv [+ analysis.json, breaks.csv]) or a curve CSV")
+      "plot", "Draw the paper's figures (PNG/SVG) of a run folder, an FBM curve CSV or a scan folder with gnuplot");
+  command
+      ->add_option("input", options->input,
+                   "Run folder (curves.csv [+ analysis.json, breaks.csv, snapshots/]), a curve CSV, or a scan folder "
+                   "(results.csv)")
       ->required();
   command->add_option("--out", options->out, "Folder for NAME.gp, NAME.dat, NAME.png, NAME.svg (default: figures/ beside the input)");
   command->add_option("--format", options->format, "png, svg or both")->check(CLI::IsMember({"png", "svg", "both"}));
+  command
+      ->add_option("--snapshots-at", options->snapshot_strains,
+                   "Strains [%] for the bond snapshots, comma-separated (default: near x_p, x_c and the last one)")
+      ->delimiter(',');
   command->callback([options] {
     const std::filesystem::path input = options->input;
     const std::filesystem::path out = options->out.empty() ? figures::default_out(input) : std::filesystem::path(options->out);
-    for (const auto& file : figures::plot(input, out, figures::parse_format(options->format))) {
-      fmt::print("wrote {}\n", file.string());
+    figures::PlotOptions plot_options;
+    plot_options.format = figures::parse_format(options->format);
+    plot_options.snapshot_strains = options->snapshot_strains;
+    for (const auto& drawn : figures::plot(input, out, plot_options)) {
+      for (const auto& file : drawn.files) fmt::print("wrote {}\n", file.string());
     }
   });
 }

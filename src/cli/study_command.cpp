@@ -1,5 +1,5 @@
 // cli/study_command: `rupture study` — the whole study in one command, as `scripts/study` runs it:
-// a reduced tissue is generated, pulled to separation, analysed for the precursor and plotted.
+// a reduced tissue is generated, pulled to separation, analysed for the precursor, plotted and reported.
 // The default config is embedded below and written into the study folder, so the study records
 // exactly what it ran; `--config` and `--set` change it.
 #include <filesystem>
@@ -12,10 +12,10 @@
 #include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
-#include "figures/figures.hpp"
 #include "io/atomic_file.hpp"
 #include "loading/config.hpp"
 #include "loading/run.hpp"
+#include "report/report.hpp"
 #include "sample/formats.hpp"
 #include "sample/stats.hpp"
 
@@ -48,6 +48,7 @@ max_strain = 1.5              # %: the default tissue fails near 0.4 %
 
 [output]
 interval = 200                # steps between curve rows
+snapshot_interval = 10000     # steps between bond snapshots (about ten over the run; the report draws three)
 
 [run]
 threads = 2
@@ -64,7 +65,7 @@ struct StudyOptions {
 void add_study_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<StudyOptions>();
   auto* cmd = app.add_subcommand(
-      "study", "The whole study on the default reduced tissue: generate, pull to separation, analyse, plot");
+      "study", "The whole study on the default reduced tissue: generate, pull to separation, analyse, plot, report");
   cmd->add_option("-o,--out", o->out, "Study folder (created; its run/ folder is replaced)");
   cmd->add_option("--config", o->config, "Run config to use instead of the embedded default (TOML)");
   cmd->add_option("--set", o->overrides, "Override a config key, e.g. --set bonds.break_distance=0.01 (repeatable)");
@@ -106,19 +107,17 @@ void add_study_command(CLI::App& app, int& exit_code) {
     const auto outcome = analyze_and_write(analyze);
     const auto& r = outcome.result;
 
-    fmt::print("[4/4] figures\n");
-    for (const auto& file : figures::plot(run_folder, run_folder / "figures", figures::Format::both)) {
-      if (file.extension() == ".png") fmt::print("      {}\n", file.string());
-    }
-
+    fmt::print("[4/4] figures and report\n");
+    const auto report = report::write_report(run_folder, "rupture report " + run_folder.string());
+    fmt::print("      {} figures in {}\n", report.figures, (run_folder / "figures").string());
+    const std::string html = fs::absolute(report.html).lexically_normal().string();
     if (r.x_p && r.x_c && r.delay) {
-      fmt::print("study done in {}: precursor x_p = {:.4g} %, failure x_c = {:.4g} %, delta_x = {:.3g} % "
-                 "(95 % [{:.3g}, {:.3g}]){}\n",
-                 out.string(), r.x_p->value, r.x_c->value, r.delay->mean, r.delay->ci95_low, r.delay->ci95_high,
+      fmt::print("report: {}; precursor: x_p = {:.3g} % before x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
+                 "[{:.2g}, {:.2g}] %){}\n",
+                 html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
                  r.accepted ? "" : "; analysis rejected: " + r.rejection);
     } else {
-      fmt::print("study done in {}: no precursor found ({})\n", out.string(),
-                 r.accepted ? "no peak" : r.rejection);
+      fmt::print("report: {}; no precursor found ({})\n", html, r.accepted ? "no peak" : r.rejection);
     }
     if (!r.accepted) exit_code = exit_rejected;
   });

@@ -1,5 +1,8 @@
 #include "figures/figures.hpp"
 
+#include "figures/scan_figures.hpp"
+#include "figures/snapshots.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "analysis/analysis.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
@@ -59,27 +63,22 @@ std::vector<std::string> provenance(const fs::path& input, const std::vector<fs:
   return lines;
 }
 
-// Block 0 and the top panel shared by every loading-curve figure: F, E_e and ℰ, each over its maximum.
-void add_loading_curves(Figure& figure, const std::string& strain_field, const std::vector<double>& x,
-                        const std::vector<double>& force, const std::vector<double>& energy,
-                        const std::vector<double>& rate, const std::string& rate_note, std::vector<Marker> markers,
-                        const std::string& source) {
+// The top panel shared by every loading-curve figure: F and E_e (block 0, columns 1 and 2, each over
+// its maximum) and the energy rate ℰ (block `rate_block`, column `rate_column`), with the maxima marked.
+Panel loading_panel(std::size_t rate_block, std::size_t rate_column, const std::string& strain_field,
+                    std::vector<Marker> markers) {
   const std::string unit = io::column_unit(strain_field).empty() ? "1" : io::column_unit(strain_field);
-  figure.blocks.push_back({"loading curves normalised to their maxima" + rate_note,
-                           {strain_field, "F/F_max[1]", "E_e/E_e,max[1]", "Erate/Erate_max[1]"},
-                           {x, normalised(force, "the force", source), normalised(energy, "the elastic energy", source),
-                            normalised(rate, "the energy rate dE_e/dx", source)}});
   Panel panel;
   panel.title = "Loading curves, each divided by its maximum";
   panel.xlabel = fmt::format("strain x [{}]", unit);
   panel.ylabel = "normalised value [1]";
   // Negative parts (unloading after failure) fall below the frame, as in the paper's figures.
   panel.yrange = "[0:1.12]";
-  panel.series = {{0, 0, 1, "force F/F_{max}"},
-                  {0, 0, 2, "elastic energy E_e/E_{e,max}"},
-                  {0, 0, 3, "energy rate ℰ/ℰ_{max}, ℰ = dE_e/dx"}};
+  panel.series = {{.y_column = 1, .title = "force F/F_{max}"},
+                  {.y_column = 2, .title = "elastic energy E_e/E_{e,max}"},
+                  {.block = rate_block, .y_column = rate_column, .title = "energy rate ℰ/ℰ_{max}, ℰ = dE_e/dx"}};
   panel.markers = std::move(markers);
-  figure.panels.push_back(std::move(panel));
+  return panel;
 }
 
 Figure fbm_figure(const io::CsvTable& table, const fs::path& input) {
@@ -92,9 +91,16 @@ Figure fbm_figure(const io::CsvTable& table, const fs::path& input) {
   figure.provenance = provenance(input, {input});
   // The three maxima of the ELS curves: x_p (ℰ) before x_c (F) before x_m (E_e), the paper's figure 3.
   std::vector<Marker> markers{{x[argmax(rate)], "x_p"}, {x[argmax(force)], "x_c"}, {x[argmax(energy)], "x_m"}};
-  add_loading_curves(figure, table.header[table.require("strain")], x, force, energy, rate, "", std::move(markers),
-                     table.source);
+  const std::string strain_field = table.header[table.require("strain")];
+  figure.blocks.push_back({"ELS curves normalised to their maxima",
+                           {strain_field, "F/F_max[1]", "E_e/E_e,max[1]", "Erate/Erate_max[1]"},
+                           {x, normalised(force, "the force", table.source),
+                            normalised(energy, "the elastic energy", table.source),
+                            normalised(rate, "the energy rate dE_e/dx", table.source)}});
+  figure.panels.push_back(loading_panel(0, 3, strain_field, std::move(markers)));
   figure.panels.front().title = "Fiber bundle: F, E_e and ℰ over their maxima";
+  figure.caption = "Fiber bundle: force F, elastic energy E_e and energy rate ℰ = dE_e/dx, each over its maximum, "
+                   "with their maxima x_p (ℰ) < x_c (F) < x_m (E_e) marked (the paper's figure 3).";
   return figure;
 }
 
@@ -102,6 +108,49 @@ std::optional<double> json_value(const nlohmann::json& analysis, const char* key
   const auto it = analysis.find(key);
   if (it == analysis.end() || it->is_null()) return std::nullopt;
   return it->at("value").get<double>();
+}
+
+// ℰ = dE_e/dx as the analysis computed it — the same columns, filter and derivative window that
+// analysis.json records, so the automatic choices are not made again — on the analysis' uniform strain
+// grid, divided by the fitted ℰ_max so that the marked x_p sits at the top of the curve.
+DataBlock analysed_rate(const io::CsvTable& curves, const nlohmann::json& analysis, const std::string& strain_field) {
+  const auto& inputs = analysis.at("inputs");
+  analysis::ColumnChoice columns;
+  columns.strain = inputs.at("columns").at("strain").get<std::string>();
+  columns.force = inputs.at("columns").at("force").get<std::string>();
+  columns.energy = inputs.at("columns").at("energy").get<std::string>();
+  columns.strain_scale = inputs.at("scales").at("strain").get<double>();
+  columns.force_scale = inputs.at("scales").at("force").get<double>();
+  columns.energy_scale = inputs.at("scales").at("energy").get<double>();
+  analysis::AnalysisOptions options;
+  const auto& filter = analysis.at("filter");
+  const std::string kind = filter.at("kind").get<std::string>();
+  if (kind == analysis::to_string(analysis::FilterKind::butterworth)) {
+    options.filter.kind = analysis::FilterKind::butterworth;
+    options.filter.butterworth_order = filter.at("order").get<int>();
+    options.filter.cutoff = filter.at("cutoff_nyquist").get<double>();
+  } else if (kind == analysis::to_string(analysis::FilterKind::savitzky_golay)) {
+    options.filter.kind = analysis::FilterKind::savitzky_golay;
+    options.filter.savgol_window = filter.at("window_samples").get<int>();
+    options.filter.savgol_order = filter.at("polynomial_order").get<int>();
+  } else {
+    options.filter.kind = analysis::FilterKind::none;
+  }
+  options.derivative_window = analysis.at("derivative").at("window_samples").get<int>();
+  const auto result = analysis::analyze_curve(analysis::select_curve(curves, columns), options);
+  std::vector<double> grid(result.energy_rate.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = result.x0 + static_cast<double>(i) * result.step;
+  std::vector<double> rate = result.energy_rate;
+  if (const auto top = json_value(analysis, "Erate_max"); top && *top > 0.0) {
+    for (auto& v : rate) v /= *top;
+  } else {
+    rate = normalised(std::move(rate), "the energy rate dE_e/dx", curves.source);
+  }
+  return {fmt::format("energy rate from the analysis: {} filter, Savitzky-Golay derivative over {} samples, "
+                      "divided by Erate_max",
+                      kind, result.derivative_window),
+          {strain_field, "Erate/Erate_max[1]"},
+          {std::move(grid), std::move(rate)}};
 }
 
 Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::path& analysis_file) {
@@ -113,6 +162,7 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
   std::vector<fs::path> read{curves.source};
   std::vector<Marker> markers;
   nlohmann::json analysis;
+  std::optional<DataBlock> analysed;  // ℰ from the analysis pipeline
   if (fs::exists(analysis_file)) {
     read.push_back(analysis_file);
     try {
@@ -126,15 +176,30 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
       for (const char* key : {"x_p", "x_c", "x_m"}) {
         if (const auto value = json_value(analysis, key)) markers.push_back({*value, key});
       }
+      analysed = analysed_rate(curves, analysis, curves.header[strain_column]);
     } catch (const nlohmann::json::exception& e) {
       throw InputError(analysis_file.string(), fmt::format("not an analysis.json: {}", e.what()),
                        "rerun `rupture analyze` to rewrite it");
     }
   }
   figure.provenance = provenance(input, read);
-  add_loading_curves(figure, curves.header[strain_column], x, curves.column("force_top"), energy,
-                     centred_difference(x, energy), " (energy rate by centred differences of E_e)", std::move(markers),
-                     curves.source);
+  const std::string strain_field = curves.header[strain_column];
+  DataBlock raw{"loading curves normalised to their maxima",
+                {strain_field, "F/F_max[1]", "E_e/E_e,max[1]"},
+                {x, normalised(curves.column("force_top"), "the force", curves.source),
+                 normalised(energy, "the elastic energy", curves.source)}};
+  if (!analysed) {
+    // Not analysed: centred differences of the raw E_e, noisy but honest.
+    raw.title += " (energy rate by centred differences of E_e)";
+    raw.header.push_back("Erate/Erate_max[1]");
+    raw.columns.push_back(normalised(centred_difference(x, energy), "the energy rate dE_e/dx", curves.source));
+    figure.blocks.push_back(std::move(raw));
+    figure.panels.push_back(loading_panel(0, 3, strain_field, std::move(markers)));
+  } else {
+    figure.blocks.push_back(std::move(raw));
+    figure.blocks.push_back(std::move(*analysed));
+    figure.panels.push_back(loading_panel(1, 1, strain_field, std::move(markers)));
+  }
   if (!analysis.is_null() && analysis.contains("delta_x") && !analysis["delta_x"].is_null()) {
     const auto& delta = analysis["delta_x"];
     const auto& posterior = delta.at("posterior");
@@ -149,11 +214,18 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     panel.xlabel = fmt::format("delay δ_x [{}]", unit);
     panel.ylabel = fmt::format("posterior density [{}]", density_unit);
     panel.yrange = "[0:*]";
-    panel.series = {{1, 0, 1, "posterior p(δ_x | F, ℰ)"}};
+    // The posterior grid spans the whole prior; show the 95 % interval with its own width on each side.
+    const double low = delta.at("ci95").at(0).get<double>(), high = delta.at("ci95").at(1).get<double>();
+    if (high > low) panel.xrange = fmt::format("[{}:{}]", low - (high - low), high + (high - low));
+    panel.series = {{.block = figure.blocks.size() - 1, .title = "posterior p(δ_x | F, ℰ)"}};
     panel.markers = {{delta.at("map").get<double>(), "MAP"}};
     figure.panels.push_back(std::move(panel));
     figure.height = 1100;
   }
+  figure.caption = "Loading curves: force on the top plate F, elastic energy E_e and energy rate ℰ = dE_e/dx against "
+                   "strain, each over its maximum (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max); "
+                   "dashed lines mark x_p, x_c and x_m from analysis.json";
+  figure.caption += figure.panels.size() > 1 ? ", and the lower panel the posterior density of δ_x = x_c - x_p." : ".";
   return figure;
 }
 
@@ -181,8 +253,10 @@ std::optional<Figure> breaks_figure(const io::CsvTable& breaks, const io::CsvTab
   panel.xlabel = fmt::format("strain x [{}]", unit);
   panel.ylabel = fmt::format("bonds broken per strain [1/{}]", unit);
   panel.yrange = "[0:*]";
-  panel.series = {{0, 0, 1, "bond-breaking rate", "boxes"}};
+  panel.series = {{.title = "bond-breaking rate", .style = Style::boxes}};
   figure.panels.push_back(std::move(panel));
+  figure.caption = fmt::format("Bond-breaking rate: bonds broken per unit strain in {} bins; bar height times bin width "
+                               "counts each of the {} broken bonds once.", break_bins, strain.size());
   return figure;
 }
 
@@ -190,45 +264,94 @@ bool is_run_curves(const io::CsvTable& table) { return table.find("force_top").h
 
 }  // namespace
 
+fs::path Drawn::png() const {
+  for (const auto& file : files)
+    if (file.extension() == ".png") return file;
+  return {};
+}
+
+bool is_scan_folder(const fs::path& input) {
+  return fs::is_directory(input) && !fs::exists(input / "curves.csv") &&
+         (fs::exists(input / "results.csv") || fs::exists(input / "scan.json"));
+}
+
 fs::path default_out(const fs::path& input) {
   return fs::is_directory(input) ? input / "figures" : input.parent_path() / "figures";
 }
 
-std::vector<fs::path> plot(const fs::path& input, const fs::path& out, Format format) {
+namespace {
+
+// The snapshots to draw: at the strains asked for, else near x_p and x_c (from analysis.json) and the
+// last one, else a third, two thirds and the end of the recorded ones.
+std::vector<SnapshotFile> chosen_snapshots(const std::vector<SnapshotFile>& all, const fs::path& analysis_file,
+                                           const std::vector<double>& wanted) {
+  if (all.empty()) return {};
+  if (!wanted.empty()) return nearest_snapshots(all, wanted);
+  std::vector<double> strains;
+  if (fs::exists(analysis_file)) {
+    const auto analysis = nlohmann::json::parse(io::read_text_file(analysis_file), nullptr, false);
+    for (const char* key : {"x_p", "x_c"}) {
+      if (analysis.is_object() && analysis.contains(key) && analysis[key].is_object())
+        strains.push_back(analysis[key].value("value", nan));
+    }
+  }
+  strains.erase(std::remove_if(strains.begin(), strains.end(), [](double v) { return !std::isfinite(v); }), strains.end());
+  if (strains.empty()) strains = {all[all.size() / 3].strain, all[2 * all.size() / 3].strain};
+  strains.push_back(all.back().strain);
+  return nearest_snapshots(all, strains);
+}
+
+std::vector<Figure> run_figures(const io::CsvTable& curves, const fs::path& input, const PlotOptions& options) {
+  const fs::path run_folder = curves.source.empty() ? fs::path() : fs::path(curves.source).parent_path();
+  std::vector<Figure> figures;
+  figures.push_back(run_figure(curves, input, run_folder / "analysis.json"));
+  if (fs::exists(run_folder / "breaks.csv")) {
+    if (auto figure = breaks_figure(io::read_csv(run_folder / "breaks.csv"), curves, input)) figures.push_back(std::move(*figure));
+  }
+  const auto all = list_snapshots(run_folder, curves);
+  if (all.empty() && !options.snapshot_strains.empty()) {
+    throw InputError((run_folder / "snapshots").string(), "no snapshots recorded in this run",
+                     "rerun with output.snapshot_interval > 0, or drop --snapshots-at");
+  }
+  const auto chosen = chosen_snapshots(all, run_folder / "analysis.json", options.snapshot_strains);
+  if (!chosen.empty()) {
+    const std::size_t strain_column = curves.require("strain");
+    figures.push_back(snapshots_figure(chosen, io::column_unit(curves.header[strain_column]),
+                                       provenance(input, {curves.source})));
+  }
+  return figures;
+}
+
+}  // namespace
+
+std::vector<Drawn> plot(const fs::path& input, const fs::path& out, const PlotOptions& options) {
   if (!fs::exists(input)) {
-    throw InputError(input.string(), "no such file or folder", "give a run folder or a curves CSV");
+    throw InputError(input.string(), "no such file or folder", "give a run folder, a scan folder or a curves CSV");
   }
-  const bool folder = fs::is_directory(input);
-  const fs::path curves_file = folder ? input / "curves.csv" : input;
-  if (folder && !fs::exists(curves_file)) {
-    throw InputError(input.string(), "no curves.csv in this folder",
-                     "give a folder written by `rupture run` or the path of a curves CSV");
-  }
-  const io::CsvTable curves = io::read_csv(curves_file);
-  if (curves.rows() < 3) {
-    throw InputError(curves_file.string(), fmt::format("{} rows; a loading curve needs at least 3", curves.rows()),
-                     "plot a longer run");
+  std::vector<Figure> figures;
+  if (is_scan_folder(input)) {
+    figures = scan_figures(input, provenance(input, {input / "results.csv"}));
+  } else {
+    const bool folder = fs::is_directory(input);
+    const fs::path curves_file = folder ? input / "curves.csv" : input;
+    if (folder && !fs::exists(curves_file)) {
+      throw InputError(input.string(), "no curves.csv or results.csv in this folder",
+                       "give a folder written by `rupture run` or `rupture scan`, or the path of a curves CSV");
+    }
+    const io::CsvTable curves = io::read_csv(curves_file);
+    if (curves.rows() < 3) {
+      throw InputError(curves_file.string(), fmt::format("{} rows; a loading curve needs at least 3", curves.rows()),
+                       "plot a longer run");
+    }
+    if (is_run_curves(curves)) figures = run_figures(curves, input, options);
+    else figures.push_back(fbm_figure(curves, input));
   }
   std::error_code error;
   fs::create_directories(out, error);
   if (error) throw RunError(fmt::format("cannot create {}: {}", out.string(), error.message()));
-
-  std::vector<Figure> figures;
-  if (is_run_curves(curves)) {
-    const fs::path run_folder = curves_file.parent_path();
-    figures.push_back(run_figure(curves, input, run_folder / "analysis.json"));
-    if (fs::exists(run_folder / "breaks.csv")) {
-      if (auto figure = breaks_figure(io::read_csv(run_folder / "breaks.csv"), curves, input)) figures.push_back(std::move(*figure));
-    }
-  } else {
-    figures.push_back(fbm_figure(curves, input));
-  }
-  std::vector<fs::path> written;
-  for (const auto& figure : figures) {
-    const auto files = draw(figure, out, format);
-    written.insert(written.end(), files.begin(), files.end());
-  }
-  return written;
+  std::vector<Drawn> drawn;
+  for (const auto& figure : figures) drawn.push_back({figure.name, figure.caption, draw(figure, out, options.format)});
+  return drawn;
 }
 
 }  // namespace rupture::figures

@@ -30,9 +30,37 @@ std::string quoted(const std::string& text) {
 
 std::string number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : std::string("?"); }
 
+std::string series_plot(const Series& s, std::size_t index, const std::string& data_file) {
+  std::string columns = fmt::format("{}:{}", s.x_column + 1, s.y_column + 1);
+  for (std::size_t c : s.extra_columns) columns += fmt::format(":{}", c + 1);
+  const std::string color = s.color.empty() ? fmt::format("linecolor {}", index + 1)
+                                            : fmt::format("linecolor rgb {}", quoted(s.color));
+  const std::string points = fmt::format("pointtype {} pointsize {}", s.point_type, s.point_size);
+  std::string with;
+  switch (s.style) {
+    case Style::lines: with = "lines linewidth line_width " + color; break;
+    case Style::boxes: with = "boxes fillstyle solid 0.5 " + color; break;
+    case Style::points: with = "points " + points + " " + color; break;
+    case Style::xyerrorbars: with = "xyerrorbars " + points + " " + color; break;
+    case Style::segments: with = "vectors nohead linewidth bond_width linecolor palette"; break;
+  }
+  return fmt::format("{} index {} using {} with {} {}", index == 0 ? quoted(data_file) : std::string("''"), s.block,
+                     columns, with, s.title.empty() ? std::string("notitle") : "title " + quoted(s.title));
+}
+
 void append_panel(std::string& gp, const Panel& panel, const std::string& data_file) {
-  gp += fmt::format("  set title {}\n  set xlabel {}\n  set ylabel {}\n  set yrange {}\n", quoted(panel.title),
-                    quoted(panel.xlabel), quoted(panel.ylabel), panel.yrange);
+  gp += fmt::format("  set title {}\n  set xlabel {}\n  set ylabel {}\n  set xrange {}\n  set yrange {}\n",
+                    quoted(panel.title), quoted(panel.xlabel), quoted(panel.ylabel), panel.xrange, panel.yrange);
+  // Every setting a panel may change is set again for each panel: multiplot panels share state.
+  gp += panel.log_x ? "  set logscale x 10\n  set format x \"10^{%L}\"\n" : "  unset logscale x\n  set format x \"% h\"\n";
+  gp += panel.log_y ? "  set logscale y 10\n  set format y \"10^{%L}\"\n" : "  unset logscale y\n  set format y \"% h\"\n";
+  gp += panel.equal_axes ? "  set size ratio -1\n" : "  set size noratio\n";
+  if (panel.cblabel.empty()) {
+    gp += "  unset colorbox\n";
+  } else {
+    gp += fmt::format("  set colorbox\n  set cblabel {}\n  set cbrange {}\n  set palette @bond_palette\n",
+                      quoted(panel.cblabel), panel.cbrange);
+  }
   gp += "  unset arrow\n  unset label\n";
   for (std::size_t i = 0; i < panel.markers.size(); ++i) {
     const auto& m = panel.markers[i];
@@ -44,11 +72,7 @@ void append_panel(std::string& gp, const Panel& panel, const std::string& data_f
   }
   std::string plots;
   for (std::size_t i = 0; i < panel.series.size(); ++i) {
-    const auto& s = panel.series[i];
-    const std::string style = s.style == "boxes" ? "boxes fillstyle solid 0.5" : "lines linewidth line_width";
-    plots += fmt::format("{}{} index {} using {}:{} with {} linecolor {} title {}", i == 0 ? "" : ", \\\n    ",
-                         i == 0 ? quoted(data_file) : std::string("''"), s.block, s.x_column + 1, s.y_column + 1, style,
-                         i + 1, quoted(s.title));
+    plots += (i == 0 ? "" : ", \\\n    ") + series_plot(panel.series[i], i, data_file);
   }
   gp += "  plot " + plots + "\n";
 }
@@ -90,9 +114,11 @@ std::string script_text(const Figure& figure, Format format) {
       "height = {4}\n"
       "font_spec = \"Sans,14\"\n"
       "line_width = 2\n"
+      "bond_width = 1  # snapshots: line width of a bond\n"
+      "bond_palette = \"defined (0 '#3b4cc0', 0.5 '#dddddd', 1 '#b40426')\"  # snapshots: compressed - unstretched - stretched\n"
       "marker_color = \"#555555\"\n\n"
       "set datafile missing \"?\"\n"
-      "set key below box height 1.5\n"
+      "set key tmargin center horizontal box  # above the frame: below it, gnuplot lets it overlap the x label\n"
       "set grid\n"
       "set tics out\n"
       "set style textbox opaque noborder  # marker labels stay readable over the curves\n\n"

@@ -20,12 +20,21 @@ struct DataBlock {
   std::vector<std::vector<double>> columns;  // columns[c][row]; NaN = missing
 };
 
+// How a series is drawn, and which columns beyond x and y it reads (`extra_columns`, in order):
+//   lines, boxes, points: none;  xyerrorbars: x_low, x_high, y_low, y_high (the ends of the bars);
+//   segments: dx, dy and the colour value (mapped through the panel's palette; bonds in snapshots).
+enum class Style { lines, boxes, points, xyerrorbars, segments };
+
 struct Series {
   std::size_t block = 0;     // DataBlock index
   std::size_t x_column = 0;  // 0-based column in that block
   std::size_t y_column = 1;
-  std::string title;         // legend text (gnuplot enhanced text: E_e, F_{max})
-  std::string style = "lines";  // "lines" or "boxes"
+  std::string title{};       // legend text (gnuplot enhanced text: E_e, F_{max}); empty: not in the legend
+  Style style = Style::lines;
+  std::vector<std::size_t> extra_columns{};
+  std::string color{};       // "#rrggbb"; empty: gnuplot's colour number (series index + 1)
+  int point_type = 7;        // gnuplot pt: 7 filled circle, 5 filled square, 9 filled triangle, 3 star
+  double point_size = 1.2;
 };
 
 struct Marker {
@@ -35,13 +44,19 @@ struct Marker {
 
 struct Panel {
   std::string title, xlabel, ylabel;  // labels carry their units, e.g. "strain x [%]"
-  std::string yrange = "[*:*]";       // gnuplot range text
+  std::string xrange = "[*:*]";       // gnuplot range text
+  std::string yrange = "[*:*]";
+  bool log_x = false, log_y = false;  // logarithmic axes (base 10)
+  bool equal_axes = false;            // one unit is as long on x as on y (pictures of the sample)
+  std::string cblabel;                // colour-bar label with unit; non-empty turns the palette on
+  std::string cbrange = "[*:*]";
   std::vector<Series> series;
   std::vector<Marker> markers;
 };
 
 struct Figure {
   std::string name;                   // file stem: NAME.gp, NAME.dat, NAME.png, NAME.svg
+  std::string caption;                // one sentence saying what the figure shows (report captions)
   int width = 1000, height = 700;     // pixels (png) and points (svg)
   std::vector<std::string> provenance;  // '#' lines at the top of both files: version, inputs
   std::vector<DataBlock> blocks;

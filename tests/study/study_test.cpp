@@ -21,9 +21,12 @@ TEST(Study, DefaultStudyFindsThePrecursorBeforeFailure) {
   const auto out = tmp / "study";
   const auto r = run_rupture("study --out '" + out.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  EXPECT_THAT(r.out, HasSubstr("study done in"));
+  // The last line says where the report is and what the precursor was.
+  const auto html = std::filesystem::absolute(out / "run" / "report.html").lexically_normal();
+  EXPECT_THAT(r.out, HasSubstr("report: " + html.string() + "; precursor: x_p = "));
   for (const char* file : {"study.toml", "sample.rsample", "run/curves.csv", "run/breaks.csv", "run/run.json",
-                           "run/analysis.json", "run/figures/loading.png", "run/figures/loading.gp"}) {
+                           "run/analysis.json", "run/figures/loading.png", "run/figures/loading.gp",
+                           "run/figures/snapshots.png", "run/report.html"}) {
     EXPECT_TRUE(std::filesystem::exists(out / file)) << file;
   }
   const auto analysis = nlohmann::json::parse(slurp(out / "run/analysis.json"));

@@ -1,0 +1,196 @@
+#include "figures/snapshots.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace rupture::figures {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The share of bonds whose |extension| sets the ends of the colour scale; the few most stretched bonds
+// (at a crack tip) would otherwise wash every other bond out to the middle colour.
+constexpr double colour_quantile = 0.995;
+
+// The text between the opening tag of DataArray Name="NAME" and its closing tag.
+std::string_view array_text(std::string_view text, std::string_view name, const fs::path& file) {
+  const std::string key = fmt::format("Name=\"{}\"", name);
+  const auto at = text.find(key);
+  const auto open_end = at == std::string_view::npos ? at : text.find('>', at);
+  const auto close = open_end == std::string_view::npos ? open_end : text.find("</DataArray>", open_end);
+  if (close == std::string_view::npos) {
+    throw InputError(file.string(), fmt::format("no complete DataArray {}", name),
+                     "give a snapshot written by `rupture run` (output.snapshot_interval)");
+  }
+  return text.substr(open_end + 1, close - open_end - 1);
+}
+
+template <class T>
+std::vector<T> parse_numbers(std::string_view text, std::string_view name, const fs::path& file) {
+  std::vector<T> values;
+  const char* p = text.data();
+  const char* end = p + text.size();
+  for (;;) {
+    while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+    if (p == end) break;
+    T value{};
+    const auto [next, error] = std::from_chars(p, end, value);
+    if (error != std::errc()) {
+      throw InputError(file.string(), fmt::format("DataArray {} holds '{}', not a number", name,
+                                                  std::string_view(p, std::min<std::size_t>(end - p, 20))),
+                       "regenerate the snapshot with `rupture run`");
+    }
+    values.push_back(value);
+    p = next;
+  }
+  return values;
+}
+
+double quantile_of_magnitude(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  for (auto& v : values) v = std::abs(v);
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+}  // namespace
+
+SnapshotBonds read_snapshot_bonds(const fs::path& vtp) {
+  const std::string text = io::read_text_file(vtp);
+  const auto points = parse_numbers<double>(array_text(text, "Points", vtp), "Points", vtp);
+  const auto connectivity = parse_numbers<std::uint64_t>(array_text(text, "connectivity", vtp), "connectivity", vtp);
+  const auto relative = parse_numbers<double>(array_text(text, "relative_extension", vtp), "relative_extension", vtp);
+  if (points.size() % 3 != 0 || connectivity.size() != 2 * relative.size()) {
+    throw InputError(vtp.string(),
+                     fmt::format("{} point coordinates, {} bond ends and {} extensions do not match", points.size(),
+                                 connectivity.size(), relative.size()),
+                     "regenerate the snapshot with `rupture run`");
+  }
+  SnapshotBonds bonds;
+  const std::size_t n_points = points.size() / 3;
+  for (std::size_t b = 0; b < relative.size(); ++b) {
+    const auto a = connectivity[2 * b], c = connectivity[2 * b + 1];
+    if (a >= n_points || c >= n_points) {
+      throw InputError(vtp.string(), fmt::format("bond {} refers to point {} of {}", b, std::max(a, c), n_points),
+                       "regenerate the snapshot with `rupture run`");
+    }
+    bonds.x_a.push_back(points[3 * a]);
+    bonds.y_a.push_back(points[3 * a + 1]);
+    bonds.x_b.push_back(points[3 * c]);
+    bonds.y_b.push_back(points[3 * c + 1]);
+    bonds.relative_extension.push_back(relative[b]);
+  }
+  return bonds;
+}
+
+std::vector<SnapshotFile> list_snapshots(const fs::path& run_folder, const io::CsvTable& curves) {
+  std::vector<SnapshotFile> found;
+  const fs::path folder = run_folder / "snapshots";
+  if (!fs::is_directory(folder)) return found;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("step_", 0) != 0 || entry.path().extension() != ".vtp") continue;
+    std::uint64_t step = 0;
+    const std::string digits = entry.path().stem().string().substr(5);
+    const auto [next, error] = std::from_chars(digits.data(), digits.data() + digits.size(), step);
+    if (error != std::errc() || next != digits.data() + digits.size()) continue;
+    found.push_back({entry.path(), step, 0.0});
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.step < b.step; });
+  // Snapshots and curve rows need not share steps: interpolate the strain linearly in step.
+  const auto& steps = curves.column("step");
+  const auto& strain = curves.column("strain");
+  for (auto& s : found) {
+    const double step = static_cast<double>(s.step);
+    const auto hi = std::lower_bound(steps.begin(), steps.end(), step);
+    if (hi == steps.begin()) s.strain = strain.front();
+    else if (hi == steps.end()) s.strain = strain.back();
+    else {
+      const auto i = static_cast<std::size_t>(hi - steps.begin());
+      const double t = (step - steps[i - 1]) / (steps[i] - steps[i - 1]);
+      s.strain = strain[i - 1] + t * (strain[i] - strain[i - 1]);
+    }
+  }
+  return found;
+}
+
+std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all, const std::vector<double>& strains) {
+  std::vector<SnapshotFile> chosen;
+  if (all.empty()) return chosen;
+  for (double wanted : strains) {
+    const auto best = std::min_element(all.begin(), all.end(), [wanted](const auto& a, const auto& b) {
+      return std::abs(a.strain - wanted) < std::abs(b.strain - wanted);
+    });
+    if (std::none_of(chosen.begin(), chosen.end(), [&](const auto& c) { return c.step == best->step; }))
+      chosen.push_back(*best);
+  }
+  std::sort(chosen.begin(), chosen.end(), [](const auto& a, const auto& b) { return a.step < b.step; });
+  return chosen;
+}
+
+Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::string& strain_unit,
+                        std::vector<std::string> provenance) {
+  Figure figure;
+  figure.name = "snapshots";
+  std::vector<double> all_extensions;
+  double x_low = INFINITY, x_high = -INFINITY, y_low = INFINITY, y_high = -INFINITY;
+  for (const auto& snapshot : chosen) {
+    provenance.push_back("read: " + snapshot.file.string());
+    const SnapshotBonds bonds = read_snapshot_bonds(snapshot.file);
+    DataBlock block;
+    block.title = fmt::format("intact bonds at step {}, strain {:.4g} {}", snapshot.step, snapshot.strain, strain_unit);
+    block.header = {"x[mm]", "y[mm]", "dx[mm]", "dy[mm]", "extension[%]"};
+    block.columns.resize(5);
+    for (std::size_t b = 0; b < bonds.x_a.size(); ++b) {
+      block.columns[0].push_back(bonds.x_a[b]);
+      block.columns[1].push_back(bonds.y_a[b]);
+      block.columns[2].push_back(bonds.x_b[b] - bonds.x_a[b]);
+      block.columns[3].push_back(bonds.y_b[b] - bonds.y_a[b]);
+      block.columns[4].push_back(100.0 * bonds.relative_extension[b]);
+      x_low = std::min({x_low, bonds.x_a[b], bonds.x_b[b]});
+      x_high = std::max({x_high, bonds.x_a[b], bonds.x_b[b]});
+      y_low = std::min({y_low, bonds.y_a[b], bonds.y_b[b]});
+      y_high = std::max({y_high, bonds.y_a[b], bonds.y_b[b]});
+    }
+    all_extensions.insert(all_extensions.end(), block.columns[4].begin(), block.columns[4].end());
+    Panel panel;
+    panel.title = fmt::format("strain x = {:.3g} {} (step {}, {} intact bonds)", snapshot.strain, strain_unit,
+                              snapshot.step, bonds.x_a.size());
+    panel.xlabel = "x across the width [mm]";
+    panel.ylabel = "y, loading direction [mm]";
+    panel.equal_axes = true;
+    panel.cblabel = "bond extension (r - r_0)/r_0 [%]";
+    panel.series = {{.block = figure.blocks.size(), .style = Style::segments, .extra_columns = {2, 3, 4}}};
+    figure.blocks.push_back(std::move(block));
+    figure.panels.push_back(std::move(panel));
+  }
+  // One colour scale for every panel, symmetric so an unstretched bond is the middle colour.
+  double scale = quantile_of_magnitude(std::move(all_extensions), colour_quantile);
+  if (!(scale > 0.0)) scale = 1e-6;
+  const double pad_x = 0.02 * (x_high - x_low), pad_y = 0.05 * (y_high - y_low);
+  for (auto& panel : figure.panels) {
+    panel.cbrange = fmt::format("[{}:{}]", -scale, scale);
+    panel.xrange = fmt::format("[{}:{}]", x_low - pad_x, x_high + pad_x);
+    panel.yrange = fmt::format("[{}:{}]", y_low - pad_y, y_high + pad_y);
+  }
+  // Each panel: the sample's aspect at 1000 px width, plus room for title and labels.
+  const double aspect = (y_high - y_low + 2 * pad_y) / std::max(x_high - x_low + 2 * pad_x, 1e-12);
+  figure.height = static_cast<int>(chosen.size()) * std::clamp(static_cast<int>(160 + 760 * aspect), 300, 900);
+  figure.provenance = std::move(provenance);
+  figure.caption = fmt::format(
+      "Intact bonds at {} strains, coloured by their extension (r - r0)/r0 in % on one scale for all panels "
+      "(ends of the scale: the {:.1f} % quantile of |extension|); broken bonds are gone.",
+      chosen.size(), 100.0 * colour_quantile);
+  return figure;
+}
+
+}  // namespace rupture::figures

@@ -1,0 +1,29 @@
+// report: the self-contained report.html of a run or scan folder — its figures embedded as data: URIs,
+// the analysis numbers in tables with units and uncertainties, the run's facts and resolved config.
+// Owns: the page and its HTML helpers. Not: drawing figures (figures/) or analysing curves (analysis/).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace rupture::report {
+
+// Standard base64 (RFC 4648, with '=' padding), for data: URIs.
+std::string base64(std::string_view bytes);
+
+// Text made safe inside HTML element content and double-quoted attribute values.
+std::string escape_html(std::string_view text);
+
+struct ReportResult {
+  std::filesystem::path html;  // FOLDER/report.html
+  std::size_t figures = 0;     // pictures embedded
+};
+
+// Draws the folder's figures into FOLDER/figures (PNG and SVG, via figures::plot) and writes
+// FOLDER/report.html atomically. FOLDER is a run folder (curves.csv [+ analysis.json, breaks.csv,
+// run.json, snapshots/]) or a scan folder (results.csv, scan.json). `command` is recorded in the page.
+// Bad input throws InputError; gnuplot or I/O trouble RunError.
+ReportResult write_report(const std::filesystem::path& folder, const std::string& command);
+
+}  // namespace rupture::report
