@@ -1,6 +1,6 @@
 // scan/ledger: each point's record in the scan folder, which is the only state a scan keeps, so that
 // any process (a local job, an MPI rank, an array task, a restart after a kill) can tell what is
-// done. A point is claimed by an flock on points/NAME/lock (released by the kernel when its holder
+// done. A point is claimed by a lock on points/NAME/lock (released by the kernel when its holder
 // dies), runs in a fresh points/NAME/attempt-N/ (never reused, so attempts never mix), and is finished
 // exactly when points/NAME/result.json exists — written last, by rename.
 // Not: choosing which point runs where (scan/farm).

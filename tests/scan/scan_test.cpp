@@ -294,6 +294,37 @@ TEST(ScanCommand, ArrayTasksThenCollectGiveTheSameResults) {
   EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(array / "results.csv"));
 }
 
+TEST(ScanCommand, APointHeldByAnotherProcessIsLeftToIt) {
+  TempDir dir;
+  write(dir / "s.toml", "[scan]\nbase = '" + examples + "block.toml'\noutput = '" + (dir / "out").string() +
+                            "'\n[[points]]\nk_n = 100\nb_d = 0.002\n[[points]]\nk_n = 1000\nb_d = 0.002\n");
+  // This test process holds the first point's lock as a running scan would.
+  const auto held = dir / "out" / "points" / "kn_100_bd_0.002";
+  std::filesystem::create_directories(held);
+  const int fd = ::open((held / "lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  struct flock lock {};
+  lock.l_type = F_WRLCK;
+  lock.l_whence = SEEK_SET;
+  ASSERT_EQ(::fcntl(fd, F_OFD_SETLK, &lock), 0);
+
+  const auto first = run_rupture("scan " + shell_quoted(dir / "s.toml") + " --jobs 2");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_FALSE(std::filesystem::exists(held / "attempt-1"));  // never touched
+  ResultsTable table = read_results(dir / "out" / "results.csv");
+  EXPECT_EQ(table.text(0, "status"), "running");
+  EXPECT_EQ(table.text(1, "status"), "ok");
+  const auto busy = run_rupture("scan --status " + shell_quoted(dir / "out"));
+  EXPECT_NE(busy.out.find("2 points: 1 done, 0 failed, 1 running, 0 pending"), std::string::npos) << busy.out;
+
+  ::close(fd);  // the holder is gone: the next scan runs the point
+  const auto second = run_rupture("scan " + shell_quoted(dir / "s.toml"));
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_NE(second.out.find("1 to run"), std::string::npos) << second.out;
+  table = read_results(dir / "out" / "results.csv");
+  EXPECT_EQ(table.text(0, "status"), "ok");
+}
+
 TEST(ScanCommand, FailedPointsAreRecordedAndTheScanGoesOn) {
   TempDir dir;
   // A fixed dt that is stable for k_n = 100 N/mm but 5x over the limit for 10^4 N/mm (allowed, so the
