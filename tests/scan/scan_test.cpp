@@ -156,13 +156,13 @@ TEST(ScanResults, TextAndMissingValuesRoundTrip) {
   EXPECT_THROW(parse_results("a,b\n1\n", "mem"), InputError);
 }
 
-TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobCount) {
+TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThreads) {
   TempDir dir;
   const auto one = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " +
-                               shell_quoted(dir / "one") + " --jobs 1");
+                               shell_quoted(dir / "one") + " --jobs 1 --threads 2");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const auto two = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " +
-                               shell_quoted(dir / "two") + " --jobs 2");
+                               shell_quoted(dir / "two") + " --jobs 2 --threads 1");
   ASSERT_EQ(two.exit_code, 0) << two.err;
   const ResultsTable table = read_results(dir / "one" / "results.csv");
   ASSERT_EQ(table.rows.size(), 6u);
@@ -192,6 +192,7 @@ TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobCount) {
   EXPECT_EQ(physics(dir / "one" / "results.csv"), physics(dir / "two" / "results.csv"));
   const auto scan = nlohmann::json::parse(slurp(dir / "two" / "scan.json"));
   EXPECT_EQ(scan["jobs"], 2);
+  EXPECT_EQ(scan["threads"], 1);
   EXPECT_EQ(scan["counts"]["ok"], 6);
   EXPECT_FALSE(scan["version"].get<std::string>().empty());
   // Run again: nothing left to do, nothing redone.
