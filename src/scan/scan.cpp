@@ -96,7 +96,14 @@ LogRange read_range(const Section& grid, const std::string& key) {
                        "use from, to (numbers) and count");
     if (name == "from") range.from = *value;
     if (name == "to") range.to = *value;
-    if (name == "count") range.count = int(*value);
+    if (name == "count") {
+      // Checked before the conversion: a fraction or a count past int's range is an input error.
+      if (*value != std::floor(*value) || *value < 1 || *value > 100000)
+        throw InputError(grid.where(key + ".count"),
+                         fmt::format("{} is not a whole number from 1 to 100000", *value),
+                         "give the number of values, e.g. count = 4");
+      range.count = int(*value);
+    }
   }
   if (!(range.from > 0) || !(range.to > 0) || range.count < 1 || range.count > 100000)
     throw InputError(grid.where(key),

@@ -122,6 +122,9 @@ TEST(ScanPlan, BadConfigsNameTheKeyAndTheFix) {
       message(base + "[grid]\nk_n = { from = 0, to = 2, count = 2 }\nb_d = { from = 1, to = 2, count = 2 }\n")
           .find("grid.k_n"),
       std::string::npos);
+  EXPECT_NE(message(base + "[grid]\nk_n = { from = 1, to = 2, count = 2.5 }\nb_d = { from = 1, to = 2, count = 2 }\n")
+                .find("grid.k_n.count"),
+            std::string::npos);
   // A bad override reaches the run config's own check before anything runs.
   EXPECT_NE(
       message(base + "set = [\"bonds.nothing=1\"]\n[[points]]\nk_n = 1\nb_d = 1\n").find("bonds.nothing"),
