@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <map>
@@ -139,11 +140,18 @@ std::size_t run_mpi(const Plan& plan, const Sample& sample, const FarmOptions& o
   const std::vector<std::size_t> pending = unfinished_points(plan);
   if (mpi.rank() != 0) {
     int finished = -1, assigned = -1;
-    for (;;) {
-      MPI_Send(&finished, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
-      MPI_Recv(&assigned, 1, MPI_INT, 0, tag_assign, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      if (assigned < 0) break;
-      finished = run_point(plan, plan.points[std::size_t(assigned)], sample, p.threads) ? assigned : -1;
+    try {
+      for (;;) {
+        MPI_Send(&finished, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
+        MPI_Recv(&assigned, 1, MPI_INT, 0, tag_assign, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (assigned < 0) break;
+        finished = run_point(plan, plan.points[std::size_t(assigned)], sample, p.threads) ? assigned : -1;
+      }
+    } catch (const std::exception& e) {
+      // The ledger itself failed (a full disk, a lost file system): rank 0 would wait for this rank's
+      // next request forever, so end the whole job; a restart resumes it.
+      fmt::print(stderr, "rupture: error: MPI rank {}: {}\n", mpi.rank(), e.what());
+      MPI_Abort(MPI_COMM_WORLD, 1);
     }
     return 0;
   }
