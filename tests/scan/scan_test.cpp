@@ -1,6 +1,7 @@
 // Scans: the point list and its rules, the results table round trip, and `rupture scan` end to end on
 // the block lattice — every column present, the same physics bytes for 1 and 2 jobs, for a scan killed
-// (SIGKILL) midway and restarted, and for job-array tasks collected afterwards; failed points recorded.
+// (SIGKILL, then SIGINT) midway and restarted, and for job-array tasks collected afterwards; failed
+// points recorded; a point held by another process left to it.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -8,6 +9,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -209,6 +211,30 @@ TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThread
       << status.out;
 }
 
+// Starts `rupture scan CONFIG --jobs 1` and sends it `signal` as soon as `started` exists (a point's
+// run.json, written before its first step: the point is then mid-run). Returns the wait status, or
+// nullopt when the scan ended first.
+std::optional<int> interrupt_scan(const std::filesystem::path& config, const std::filesystem::path& started,
+                                  int signal) {
+  const pid_t child = fork();
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::setenv("CI", "1", 1);
+    ::execl(RUPTURE_BINARY, RUPTURE_BINARY, "scan", config.c_str(), "--jobs", "1", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int status = 0;
+  while (!std::filesystem::exists(started)) {
+    if (::waitpid(child, &status, WNOHANG) == child) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ::kill(child, signal);
+  ::waitpid(child, &status, 0);
+  return status;
+}
+
 TEST(ScanCommand, KilledMidwayAndRestartedGivesTheSameResults) {
   TempDir dir;
   write(dir / "whole.toml", slow_scan((dir / "whole").string()));
@@ -216,55 +242,41 @@ TEST(ScanCommand, KilledMidwayAndRestartedGivesTheSameResults) {
   const auto whole = run_rupture("scan " + shell_quoted(dir / "whole.toml") + " --jobs 1");
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
 
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(null, 2);
-    const std::string config = (dir / "killed.toml").string();
-    ::setenv("CI", "1", 1);
-    ::execl(RUPTURE_BINARY, RUPTURE_BINARY, "scan", config.c_str(), "--jobs", "1",
-            static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  // Kill it (SIGKILL: no chance to clean up) in the middle of the second point: its run has begun
-  // (run.json is written before the first step) and the first point is finished.
+  // SIGKILL (no chance to clean up) in the middle of the second point.
   const auto points = dir / "killed" / "points";
   const auto first = points / "kn_100_bd_0.002";
   const auto second = points / "kn_100_bd_0.004";
-  int status = 0;
-  bool exited = false;
-  while (!std::filesystem::exists(second / "attempt-1" / "run.json")) {
-    if (::waitpid(child, &status, WNOHANG) == child) {
-      exited = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  ASSERT_FALSE(exited) << "the scan ended before its second point began";
-  ::kill(child, SIGKILL);
-  ::waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status));
+  const auto third = points / "kn_316.228_bd_0.002";
+  const auto killed = interrupt_scan(dir / "killed.toml", second / "attempt-1" / "run.json", SIGKILL);
+  ASSERT_TRUE(killed.has_value()) << "the scan ended before its second point began";
+  ASSERT_TRUE(WIFSIGNALED(*killed) && WTERMSIG(*killed) == SIGKILL);
   const std::string first_result = slurp(first / "result.json");
-  ASSERT_FALSE(std::filesystem::exists(second / "result.json"))
-      << "the second point finished before the kill";
+  ASSERT_FALSE(std::filesystem::exists(second / "result.json")) << "the second point finished before the kill";
 
   const auto status_text = run_rupture("scan --status " + shell_quoted(dir / "killed"));
   EXPECT_NE(status_text.out.find("6 points: 1 done, 0 failed, 0 running, 5 pending (1 of them partial"),
             std::string::npos)
       << status_text.out;  // the lock died with the process
 
+  // Restarted, then interrupted again (SIGINT, as Ctrl-C) in the middle of the third point.
+  const auto interrupted = interrupt_scan(dir / "killed.toml", third / "attempt-1" / "run.json", SIGINT);
+  ASSERT_TRUE(interrupted.has_value()) << "the restarted scan ended before its third point began";
+  ASSERT_TRUE(WIFSIGNALED(*interrupted) && WTERMSIG(*interrupted) == SIGINT);
+  ASSERT_FALSE(std::filesystem::exists(third / "result.json")) << "the third point finished before SIGINT";
+  EXPECT_EQ(nlohmann::json::parse(slurp(second / "result.json"))["attempt"], "attempt-2");
+
   const auto restarted = run_rupture("scan " + shell_quoted(dir / "killed.toml") + " --jobs 1");
   ASSERT_EQ(restarted.exit_code, 0) << restarted.err;
-  EXPECT_NE(restarted.out.find("5 to run"), std::string::npos) << restarted.out;
+  EXPECT_NE(restarted.out.find("4 to run"), std::string::npos) << restarted.out;
   EXPECT_EQ(slurp(first / "result.json"), first_result);  // a finished point is never redone
   EXPECT_FALSE(std::filesystem::exists(first / "attempt-2"));
   EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(dir / "killed" / "results.csv"));
-  // The interrupted point was redone in a fresh attempt folder; the partial one is left apart, unread.
-  EXPECT_EQ(nlohmann::json::parse(slurp(second / "result.json"))["attempt"], "attempt-2");
-  EXPECT_TRUE(std::filesystem::exists(second / "attempt-1"));
-  EXPECT_FALSE(std::filesystem::exists(second / "attempt-1" / "analysis.json"));
+  // Each interrupted point was redone in a fresh attempt folder; the partial one is left apart, unread.
+  for (const auto& point : {second, third}) {
+    EXPECT_EQ(nlohmann::json::parse(slurp(point / "result.json"))["attempt"], "attempt-2") << point;
+    EXPECT_TRUE(std::filesystem::exists(point / "attempt-1"));
+    EXPECT_FALSE(std::filesystem::exists(point / "attempt-1" / "analysis.json"));
+  }
 }
 
 TEST(ScanCommand, ArrayTasksThenCollectGiveTheSameResults) {
