@@ -1,11 +1,11 @@
 // Scans under MPI: `mpirun -n 2 --oversubscribe rupture scan` farms the small block scan out across
 // two ranks and gives the same physics columns, byte for byte, as the scan run locally; restarted through
 // examples/slurm/scan-mpi.sbatch, it finds every point finished and runs nothing.
-#include <cstdlib>
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "scan_support.hpp"
 #include "support/tool.hpp"
@@ -30,10 +30,11 @@ struct Launch {
 // leak checking is off for the ranks because the MPI library's own allocations outlive MPI_Finalize.
 Launch mpirun(int ranks, const std::string& args, const TempDir& dir) {
   const auto log = dir / "mpirun.log";
-  const std::string command = "CI=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-                              "ASAN_OPTIONS=detect_leaks=0 '" RUPTURE_MPIEXEC "' -n " +
-                              std::to_string(ranks) + " --oversubscribe '" + RUPTURE_BINARY + "' " + args +
-                              " </dev/null >" + shell_quoted(log) + " 2>&1";
+  const std::string command =
+      "CI=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+      "ASAN_OPTIONS=detect_leaks=0 '" RUPTURE_MPIEXEC "' -n " +
+      std::to_string(ranks) + " --oversubscribe '" + RUPTURE_BINARY + "' " + args + " </dev/null >" +
+      shell_quoted(log) + " 2>&1";
   const int status = std::system(command.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(log)};
 }
@@ -53,10 +54,11 @@ TEST(ScanMpi, TwoRanksGiveTheSamePhysicsAsOneProcess) {
   EXPECT_EQ(scan["counts"]["ok"], 6);
 
   // Restarted under MPI as the example batch script does it: every point is finished, none runs again.
-  const auto again = test_support::run_script(
-      "scan-mpi.sbatch", dir.path(),
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ASAN_OPTIONS=detect_leaks=0 MPIRUN='" RUPTURE_MPIEXEC
-      " -n 2 --oversubscribe' SCAN_CONFIG=" + config + " SLURM_CPUS_PER_TASK=1");
+  const auto again = test_support::run_script("scan-mpi.sbatch", dir.path(),
+                                              "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                                              "ASAN_OPTIONS=detect_leaks=0 MPIRUN='" RUPTURE_MPIEXEC
+                                              " -n 2 --oversubscribe' SCAN_CONFIG=" +
+                                                  config + " SLURM_CPUS_PER_TASK=1");
   ASSERT_EQ(again.exit_code, 0) << again.out;
   EXPECT_NE(again.out.find("0 to run"), std::string::npos) << again.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "scan-block" / "points" / "kn_100_bd_0.002" / "attempt-2"));

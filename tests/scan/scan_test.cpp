@@ -2,23 +2,23 @@
 // the block lattice — every column present, the same physics bytes for 1 and 2 jobs, for a scan killed
 // (SIGKILL, then SIGINT) midway and restarted, and for job-array tasks collected afterwards; failed
 // points recorded; a point held by another process left to it.
+#include "scan/scan.hpp"
+
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "scan/farm.hpp"
 #include "scan/results.hpp"
-#include "scan/scan.hpp"
 #include "scan_support.hpp"
 #include "support/tool.hpp"
 
@@ -86,7 +86,8 @@ TEST(ScanPlan, PaperScanSpansTheRangesOfSectionFive) {
   // Stop strain 5 x the first-break strain 100 b_d / r0 (r0 = 1 mm here), within [2 %, 600 %].
   EXPECT_DOUBLE_EQ(plan.points.front().max_strain, 2.0);
   EXPECT_DOUBLE_EQ(plan.points.back().max_strain, 600.0);
-  EXPECT_NEAR(plan.points[7].max_strain, 5 * 100 * plan.points[7].b_d, 1e-5 * plan.points[7].max_strain);  // 6 digits
+  EXPECT_NEAR(plan.points[7].max_strain, 5 * 100 * plan.points[7].b_d,
+              1e-5 * plan.points[7].max_strain);  // 6 digits
 }
 
 TEST(ScanPlan, ListedPointsFollowTheGridWithoutDuplicates) {
@@ -124,9 +125,11 @@ TEST(ScanPlan, BadConfigsNameTheKeyAndTheFix) {
       message(base + "[grid]\nk_n = { from = 0, to = 2, count = 2 }\nb_d = { from = 1, to = 2, count = 2 }\n")
           .find("grid.k_n"),
       std::string::npos);
-  EXPECT_NE(message(base + "[grid]\nk_n = { from = 1, to = 2, count = 2.5 }\nb_d = { from = 1, to = 2, count = 2 }\n")
-                .find("grid.k_n.count"),
-            std::string::npos);
+  EXPECT_NE(
+      message(base +
+              "[grid]\nk_n = { from = 1, to = 2, count = 2.5 }\nb_d = { from = 1, to = 2, count = 2 }\n")
+          .find("grid.k_n.count"),
+      std::string::npos);
   // A bad override reaches the run config's own check before anything runs.
   EXPECT_NE(
       message(base + "set = [\"bonds.nothing=1\"]\n[[points]]\nk_n = 1\nb_d = 1\n").find("bonds.nothing"),
@@ -222,7 +225,8 @@ std::optional<int> interrupt_scan(const std::filesystem::path& config, const std
     ::dup2(null, 1);
     ::dup2(null, 2);
     ::setenv("CI", "1", 1);
-    ::execl(RUPTURE_BINARY, RUPTURE_BINARY, "scan", config.c_str(), "--jobs", "1", static_cast<char*>(nullptr));
+    ::execl(RUPTURE_BINARY, RUPTURE_BINARY, "scan", config.c_str(), "--jobs", "1",
+            static_cast<char*>(nullptr));
     ::_exit(127);
   }
   int status = 0;
@@ -251,7 +255,8 @@ TEST(ScanCommand, KilledMidwayAndRestartedGivesTheSameResults) {
   ASSERT_TRUE(killed.has_value()) << "the scan ended before its second point began";
   ASSERT_TRUE(WIFSIGNALED(*killed) && WTERMSIG(*killed) == SIGKILL);
   const std::string first_result = slurp(first / "result.json");
-  ASSERT_FALSE(std::filesystem::exists(second / "result.json")) << "the second point finished before the kill";
+  ASSERT_FALSE(std::filesystem::exists(second / "result.json"))
+      << "the second point finished before the kill";
 
   const auto status_text = run_rupture("scan --status " + shell_quoted(dir / "killed"));
   EXPECT_NE(status_text.out.find("6 points: 1 done, 0 failed, 0 running, 5 pending (1 of them partial"),
@@ -296,12 +301,14 @@ TEST(ScanCommand, ArrayTasksThenCollectGiveTheSameResults) {
   EXPECT_NE(part.out.find("6 points: 3 done, 0 failed, 0 running, 3 pending"), std::string::npos) << part.out;
   // Tasks 2, 1, 0 as the example batch script runs them, the index from SLURM_ARRAY_TASK_ID.
   for (int i = 2; i >= 0; --i) {
-    const auto task = test_support::run_script(
-        "scan-array.sbatch", dir.path(),
-        "SLURM_ARRAY_TASK_ID=" + std::to_string(i) + " SLURM_CPUS_PER_TASK=1 SCAN_CONFIG=" + shell_quoted(config));
+    const auto task =
+        test_support::run_script("scan-array.sbatch", dir.path(),
+                                 "SLURM_ARRAY_TASK_ID=" + std::to_string(i) +
+                                     " SLURM_CPUS_PER_TASK=1 SCAN_CONFIG=" + shell_quoted(config));
     ASSERT_EQ(task.exit_code, 0) << task.out;
   }
-  const auto past = run_rupture("scan " + shell_quoted(config) + " -o " + shell_quoted(array) + " --task-index 6");
+  const auto past =
+      run_rupture("scan " + shell_quoted(config) + " -o " + shell_quoted(array) + " --task-index 6");
   EXPECT_EQ(past.exit_code, 2);
   EXPECT_NE(past.err.find("--array=0-5"), std::string::npos) << past.err;
   const auto collect = test_support::run_script("scan-collect.sbatch", dir.path(), "SCAN_FOLDER=scan-block");
