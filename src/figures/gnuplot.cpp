@@ -1,5 +1,6 @@
 #include "figures/gnuplot.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -61,6 +62,9 @@ void append_panel(std::string& gp, const Panel& panel, const std::string& data_f
     gp += fmt::format("  set colorbox\n  set cblabel {}\n  set cbrange {}\n  set palette @bond_palette\n",
                       quoted(panel.cblabel), panel.cbrange);
   }
+  // The legend sits above the frame (below it, gnuplot lets it overlap the x label); none if no series has a title.
+  const bool any_title = std::any_of(panel.series.begin(), panel.series.end(), [](const Series& s) { return !s.title.empty(); });
+  gp += any_title ? "  set key tmargin center horizontal box\n" : "  unset key\n";
   gp += "  unset arrow\n  unset label\n";
   for (std::size_t i = 0; i < panel.markers.size(); ++i) {
     const auto& m = panel.markers[i];
@@ -115,10 +119,9 @@ std::string script_text(const Figure& figure, Format format) {
       "font_spec = \"Sans,14\"\n"
       "line_width = 2\n"
       "bond_width = 1  # snapshots: line width of a bond\n"
-      "bond_palette = \"defined (0 '#3b4cc0', 0.5 '#dddddd', 1 '#b40426')\"  # snapshots: compressed - unstretched - stretched\n"
+      "bond_palette = \"defined (0 '#3b4cc0', 0.5 '#8c8c8c', 1 '#b40426')\"  # snapshots: compressed - unstretched (grey, visible on white) - stretched\n"
       "marker_color = \"#555555\"\n\n"
       "set datafile missing \"?\"\n"
-      "set key tmargin center horizontal box  # above the frame: below it, gnuplot lets it overlap the x label\n"
       "set grid\n"
       "set tics out\n"
       "set style textbox opaque noborder  # marker labels stay readable over the curves\n\n"

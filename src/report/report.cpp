@@ -130,11 +130,20 @@ std::string figures_section(const std::vector<figures::Drawn>& drawn, std::size_
   return html;
 }
 
+// Once the page has loaded, records on <body> how many figures decoded (data-figures="N of M loaded"),
+// so a headless browser can tell a page whose pictures are broken from one that shows them all.
+constexpr const char* figure_check = R"(window.addEventListener("load", function () {
+  var images = Array.prototype.slice.call(document.images);
+  var loaded = images.filter(function (img) { return img.complete && img.naturalWidth > 0; }).length;
+  document.body.setAttribute("data-figures", loaded + " of " + images.length + " loaded");
+});
+)";
+
 std::string page(const std::string& title, const std::string& body) {
   return fmt::format(
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>\n{}</style>\n"
-      "</head>\n<body>\n{}</body>\n</html>\n",
-      escape_html(title), style_sheet, body);
+      "<script>\n{}</script>\n</head>\n<body>\n{}</body>\n</html>\n",
+      escape_html(title), style_sheet, figure_check, body);
 }
 
 std::string provenance(const fs::path& folder, const std::string& command) {

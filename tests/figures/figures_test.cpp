@@ -18,6 +18,8 @@
 #include "figures/gnuplot.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "figures/scan_fixture.hpp"
+#include "fbm/power_law.hpp"
 #include "support/tool.hpp"
 
 namespace {
@@ -97,6 +99,41 @@ std::vector<std::vector<double>> first_block(const fs::path& file) {
   return columns;
 }
 
+// Every block of a NAME.dat file: its '# index N: title' line and its rows of numbers.
+struct Block {
+  std::string title;
+  std::vector<std::vector<double>> rows;
+};
+std::vector<Block> blocks(const fs::path& file) {
+  std::vector<Block> out;
+  std::istringstream in(slurp(file));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("# index ", 0) == 0) {
+      out.push_back({line.substr(line.find(':') + 2), {}});
+    } else if (!line.empty() && line[0] != '#' && !out.empty()) {
+      std::istringstream fields(line);
+      std::vector<double> row;
+      for (std::string field; fields >> field;)
+        row.push_back(field == "?" ? std::numeric_limits<double>::quiet_NaN() : std::stod(field));
+      out.back().rows.push_back(std::move(row));
+    }
+  }
+  return out;
+}
+
+const Block* find_block(const std::vector<Block>& all, const std::string& title) {
+  for (const auto& b : all)
+    if (b.title == title) return &b;
+  ADD_FAILURE() << "no block titled '" << title << "'";
+  return nullptr;
+}
+
+std::size_t rows_of(const std::vector<Block>& all, const std::string& title) {
+  const Block* b = find_block(all, title);
+  return b ? b->rows.size() : 0;
+}
+
 TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   TempDir dir;
   const auto run = dir / "run";
@@ -165,6 +202,111 @@ TEST(Figures, FbmCurveMaximaAtClosedFormStrains) {
   EXPECT_NEAR(x[1], 0.5, 1e-3);
   EXPECT_NEAR(x[2], 2.0 / 3.0, 1e-3);
   expect_silent_rerun(dir / "figs", "uniform");
+}
+
+// Snapshots: one panel per chosen strain, each bond a segment between its two particles with its
+// extension in percent, read back from the .vtp the run wrote.
+TEST(Figures, SnapshotsDrawIntactBondsAtChosenStrains) {
+  TempDir dir;
+  const auto run = dir / "run";
+  ASSERT_EQ(run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run) +
+                        " --set output.snapshot_interval=500")
+                .exit_code,
+            0);
+  const auto out = dir / "figs";
+  const auto r = run_rupture("plot " + shell_quoted(run) + " --out " + shell_quoted(out) + " --snapshots-at 0,0.15");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto size = png_size(out / "snapshots.png");
+  EXPECT_EQ(size.width, 1000u);
+  expect_svg(out / "snapshots.svg");
+  const auto all = blocks(out / "snapshots.dat");
+  ASSERT_EQ(all.size(), 2u);  // the snapshots nearest 0 % and 0.15 %: steps 0 and 500
+  EXPECT_THAT(all[0].title, HasSubstr("step 0,"));
+  EXPECT_THAT(all[1].title, HasSubstr("step 500,"));
+  // 4 x 8 x 2 particles 1 mm apart, bonded to their axial neighbours: 3x8x2 + 4x7x2 + 4x8x1 = 136 bonds,
+  // all intact and at rest before loading; projected on (x, y) each is 1 mm long or (along z) a point.
+  ASSERT_EQ(all[0].rows.size(), 136u);
+  for (const auto& bond : all[0].rows) {
+    const double length = std::hypot(bond[2], bond[3]);
+    EXPECT_TRUE(std::abs(length) < 1e-9 || std::abs(length - 1.0) < 1e-9) << length;
+    EXPECT_NEAR(bond[4], 0.0, 1e-9);  // extension [%]
+  }
+  // Under load the bonds along y stretch; an intact bond is never beyond its breaking distance
+  // 0.002 mm, 0.2 % of its 1 mm rest length.
+  double largest = 0.0;
+  for (const auto& bond : all[1].rows) {
+    EXPECT_LE(bond[4], 0.2 + 1e-9);
+    largest = std::max(largest, bond[4]);
+  }
+  EXPECT_GT(largest, 0.05);
+  EXPECT_EQ(size.height, static_cast<std::uint32_t>(2 * 900));  // two tall panels of the 3 x 7 mm block
+  expect_silent_rerun(out, "snapshots");
+}
+
+TEST(Figures, SnapshotsAskedForInARunWithoutThemIsBadInput) {
+  TempDir dir;
+  const auto run = dir / "run";
+  ASSERT_EQ(run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
+  const auto r = run_rupture("plot " + shell_quoted(run) + " --snapshots-at 0.1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("output.snapshot_interval"));
+}
+
+// Figures 15-17 from a hand-written results.csv: every point lands in its class, Γ group and panel,
+// and the FBM lines are the closed-form power-law values.
+TEST(Figures, ScanFiguresFromResultsTable) {
+  using rupture::testing::ScanFixture;
+  TempDir dir;
+  const auto scan = dir / "scan";
+  rupture::testing::write_scan_fixture(scan);
+  const auto r = run_rupture("plot " + shell_quoted(scan));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto out = scan / "figures";
+  for (const std::string name : {"mechanism_map", "delay_vs_critical", "energy_ratio_vs_critical"}) {
+    const auto size = png_size(out / (name + ".png"));
+    EXPECT_EQ(size.width, 1000u) << name;
+    EXPECT_EQ(size.height, 700u) << name;
+    expect_svg(out / (name + ".svg"));
+    expect_silent_rerun(out, name);
+  }
+  const auto map = blocks(out / "mechanism_map.dat");
+  EXPECT_EQ(rows_of(map, "class brittle"), std::size_t(ScanFixture::brittle));
+  EXPECT_EQ(rows_of(map, "class hyper-elastic"), std::size_t(ScanFixture::hyper_elastic));
+  EXPECT_EQ(rows_of(map, "class semi-ductile"), std::size_t(ScanFixture::semi_ductile));
+  EXPECT_EQ(rows_of(map, "class ductile"), std::size_t(ScanFixture::ductile));
+  EXPECT_EQ(rows_of(map, "points without a class (not separated, unstable, failed or unfinished)"),
+            std::size_t(ScanFixture::without_class));
+  EXPECT_EQ(rows_of(map, "points with Gamma > 5"), std::size_t(ScanFixture::gamma_above_5));
+  EXPECT_THAT(slurp(out / "mechanism_map.gp"), HasSubstr("set logscale x 10"));
+
+  const auto delay = blocks(out / "delay_vs_critical.dat");
+  const Block* points = find_block(delay, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval");
+  ASSERT_NE(points, nullptr);
+  EXPECT_EQ(points->rows.size(), std::size_t(ScanFixture::positive_delay));
+  EXPECT_THAT(slurp(out / "delay_vs_critical.gp"), HasSubstr("1 with δ_x ≤ 0 cannot be shown on log axes"));
+  // Uniform thresholds (α = 0): x_c = 1/2, x_p = 1/3, so δ_x = x_c / 3 on the FBM line.
+  const Block* line = find_block(delay, "FBM power law, alpha = 0");
+  ASSERT_NE(line, nullptr);
+  for (const auto& row : line->rows) EXPECT_NEAR(row[1] / row[0], 1.0 / 3.0, 1e-12);
+
+  const auto ratio = blocks(out / "energy_ratio_vs_critical.dat");
+  EXPECT_EQ(rows_of(ratio, "points with Γ < 1"), std::size_t(ScanFixture::gamma_below_1));
+  EXPECT_EQ(rows_of(ratio, "points with 1 ≤ Γ ≤ 5"), std::size_t(ScanFixture::gamma_1_to_5));
+  EXPECT_EQ(rows_of(ratio, "points with Γ > 5"), std::size_t(ScanFixture::gamma_above_5));
+  const Block* uniform = find_block(ratio, "FBM power law, alpha = 0");
+  ASSERT_NE(uniform, nullptr);
+  for (const auto& row : uniform->rows) EXPECT_NEAR(row[1], 4.0 / 3.0, 1e-12);  // A_r of the uniform bundle
+  const Block* alpha5 = find_block(ratio, "FBM power law, alpha = 5");
+  ASSERT_NE(alpha5, nullptr);
+  for (const auto& row : alpha5->rows) EXPECT_NEAR(row[1], fbm::power_law::energy_ratio(5.0), 1e-12);
+}
+
+TEST(Figures, ScanFolderWithoutResultsIsBadInput) {
+  TempDir dir;
+  io::write_file_atomically(dir / "scan.json", "{}");
+  const auto r = run_rupture("plot " + shell_quoted(dir.path()));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("no results.csv"));
 }
 
 TEST(Figures, FolderWithoutCurvesIsBadInput) {
