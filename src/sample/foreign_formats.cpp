@@ -117,11 +117,12 @@ std::string format_lammps_data(const Sample& sample, LammpsAtomStyle style) {
   const bool bpm = style == LammpsAtomStyle::bpm_sphere;
   fmt::format_to(it, "Atoms # {}\n\n", bpm ? "bpm/sphere" : "hybrid sphere bond");
   for (const auto k : sample_detail::id_order(sample)) {
-    const std::int64_t atom_id = sample.id[k] + 1;
-    if (atom_id < 1)
+    // atom-ID = id + 1 must lie in 1 .. 2^63 - 1 (checked before adding, which could overflow).
+    if (sample.id[k] < 0 || sample.id[k] == std::numeric_limits<std::int64_t>::max())
       throw InputError("LAMMPS export",
-                       fmt::format("particle id {} would give LAMMPS atom-ID {} < 1", sample.id[k], atom_id),
+                       fmt::format("particle id {} has no LAMMPS atom-ID (id + 1)", sample.id[k]),
                        "renumber the sample's ids from 0 (e.g. through the own format) first");
+    const std::int64_t atom_id = sample.id[k] + 1;
     const int type = 1 + static_cast<int>(sample.group[k]);
     const Vec3& p = sample.position[k];
     const double diameter = 2.0 * sample.radius[k];
@@ -143,7 +144,7 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
   // The first line is a free title (it may contain '#'); the rest has '#' comments.
   const auto title = text.substr(0, text.find('\n'));
   const bool written_by_rupture = title.starts_with(lammps_title);
-  TextReader in(text, source, '#');
+  TextReader in(text, source, '#', "see the LAMMPS data files rupture reads in docs/sample.md");
   std::string_view line;
   in.next(line);  // the title
 
@@ -191,7 +192,14 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
     }
     return {};
   };
-  SampleAssembler build;
+  // LAMMPS atom-IDs are positive; the sample's id is the atom-ID - 1.
+  const auto sample_id = [&](std::string_view word, std::string_view what) {
+    const std::int64_t atom_id = in.integer(word, what);
+    if (atom_id < 1)
+      in.fail(fmt::format("{} {} is not positive", what, atom_id), "LAMMPS atom-IDs start at 1");
+    return atom_id - 1;
+  };
+  SampleAssembler build(1);
   build.sample.box = box;
   // The sample has one density: the atoms' common one, or their mass-weighted mean (g/mm^3).
   double mass = 0.0, volume = 0.0, common_density = -1.0;
@@ -212,11 +220,10 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
                               words.size(), TextReader::trim(style_text), layout.columns,
                               layout.columns + 3));
         const auto column = [&](int k) { return words[static_cast<std::size_t>(k)]; };
-        const auto atom_id = in.integer(column(layout.id), "atom-ID");
+        const auto id = sample_id(column(layout.id), "atom-ID");
         const double diameter = in.real(column(layout.diameter), "diameter");
         if (!(diameter > 0.0))
-          in.fail(fmt::format("atom {} has diameter {}", atom_id, diameter),
-                  "give every atom a diameter > 0");
+          in.fail(fmt::format("atom {} has diameter {}", id + 1, diameter), "give every atom a diameter > 0");
         const double density = in.real(column(layout.density), "density");
         // An integer molecule-ID where the layout expects one confirms the column order.
         if (layout.molecule >= 0) in.integer(column(layout.molecule), "molecule-ID");
@@ -228,7 +235,7 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
           group = static_cast<ParticleGroup>(type - 1);
         }
         const double radius = 0.5 * diameter;
-        build.add_particle(in, atom_id - 1,
+        build.add_particle(in, id,
                            {in.real(column(layout.x), "x"), in.real(column(layout.x + 1), "y"),
                             in.real(column(layout.x + 2), "z")},
                            radius, group);
@@ -242,7 +249,7 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
       if (!have_atoms_section) in.fail("the Bonds section comes before Atoms", "put the Atoms section first");
       section = for_each_data_line([&](const std::vector<std::string_view>& words) {
         in.expect_columns(words, 4, "bond-ID bond-type atom1 atom2");
-        build.add_bond(in, in.integer(words[2], "atom1") - 1, in.integer(words[3], "atom2") - 1);
+        build.add_bond(in, sample_id(words[2], "atom1"), sample_id(words[3], "atom2"));
         ++bonds_read;
       });
     } else {
@@ -286,7 +293,7 @@ std::string format_lsm_geometry(const Sample& sample) {
 }
 
 Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
-  TextReader in(text, source, 0);
+  TextReader in(text, source, 0, "see the LSMGeometry 1.2 layout in docs/sample.md");
   const auto keyword = [&](std::string_view what) {
     const auto line = in.require(fmt::format("'{}'", what));
     if (line != what) in.fail(fmt::format("expected '{}', found '{}'", what, line));

@@ -80,7 +80,7 @@ std::string format_own(const Sample& sample) {
 }
 
 Sample parse_own(std::string_view text, const std::string& source) {
-  TextReader in(text, source, 0);
+  TextReader in(text, source, 0, "see the layout of 'rupture-sample 1' in docs/sample.md");
   // Provenance comments come before `box`; the reader keeps them and skips every other comment.
   SampleAssembler build;
   std::string_view line;

@@ -19,10 +19,11 @@
 namespace rupture::sample_detail {
 
 // Walks a text line by line; `comment` strips everything from that character on (0: none).
+// `layout_fix` is the fix of an error that has no more specific one: where the layout is described.
 class TextReader {
  public:
-  TextReader(std::string_view text, std::string source, char comment)
-      : text_(text), source_(std::move(source)), comment_(comment) {}
+  TextReader(std::string_view text, std::string source, char comment, std::string layout_fix)
+      : text_(text), source_(std::move(source)), comment_(comment), layout_fix_(std::move(layout_fix)) {}
 
   // Next line that is not blank after comment stripping; false at the end of the text.
   bool next(std::string_view& line) {
@@ -59,7 +60,7 @@ class TextReader {
   std::string_view raw_line() const { return last_raw_; }
   std::string where() const { return fmt::format("{}:{}", source_, line_number_); }
   [[noreturn]] void fail(const std::string& problem, const std::string& fix = {}) const {
-    throw InputError(where(), problem, fix);
+    throw InputError(where(), problem, fix.empty() ? layout_fix_ : fix);
   }
 
   static std::string_view trim(std::string_view s) {
@@ -85,7 +86,8 @@ class TextReader {
     double value = 0.0;
     const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
-      fail(fmt::format("{} '{}' is not a finite number", what, word));
+      fail(fmt::format("{} '{}' is not a finite number", what, word),
+           "write a decimal number such as 0.25 or 1e-3");
     return value;
   }
   std::int64_t integer(std::string_view word, std::string_view what) const {
@@ -93,12 +95,12 @@ class TextReader {
     std::int64_t value = 0;
     const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || end != word.data() + word.size())
-      fail(fmt::format("{} '{}' is not an integer", what, word));
+      fail(fmt::format("{} '{}' is not an integer", what, word), "write a whole number such as 12");
     return value;
   }
   std::size_t count(std::string_view word, std::string_view what) const {
     const auto v = integer(word, what);
-    if (v < 0) fail(fmt::format("{} {} is negative", what, v));
+    if (v < 0) fail(fmt::format("{} {} is negative", what, v), "a count is 0 or more");
     return static_cast<std::size_t>(v);
   }
   double radius(std::string_view word) const {
@@ -116,18 +118,22 @@ class TextReader {
   std::string_view text_;
   std::string source_;
   char comment_;
+  std::string layout_fix_;
   std::size_t pos_ = 0, line_number_ = 0;
   std::string_view last_raw_;
 };
 
 // Builds a sample's particle arrays and bonds from ids, checking what every format must satisfy:
-// unique ids, bonds between known and distinct particles, no bond twice.
+// unique ids, bonds between known and distinct particles, no bond twice. Messages show an id as
+// the file writes it: the id plus `shown_id_offset` (LAMMPS atom-IDs are rupture ids + 1).
 class SampleAssembler {
  public:
+  explicit SampleAssembler(std::int64_t shown_id_offset = 0) : shown_(shown_id_offset) {}
+
   void add_particle(const TextReader& in, std::int64_t id, Vec3 position, double radius,
                     ParticleGroup group = ParticleGroup::free) {
     if (!index_of_.emplace(id, static_cast<std::uint32_t>(sample.size())).second)
-      in.fail(fmt::format("particle id {} appears twice", id), "ids must be unique");
+      in.fail(fmt::format("particle id {} appears twice", id + shown_), "ids must be unique");
     sample.id.push_back(id);
     sample.position.push_back(position);
     sample.radius.push_back(radius);
@@ -136,16 +142,20 @@ class SampleAssembler {
   // rest_length < 0: take the distance between the two particles (formats that do not store it).
   void add_bond(const TextReader& in, std::int64_t id_a, std::int64_t id_b, double rest_length = -1.0) {
     const auto a = index_of_.find(id_a), b = index_of_.find(id_b);
+    const std::string pair = fmt::format("bond {}-{}", id_a + shown_, id_b + shown_);
     if (a == index_of_.end() || b == index_of_.end())
-      in.fail(fmt::format("bond {}-{} names particle id {}, which the file does not define", id_a, id_b,
-                          a == index_of_.end() ? id_a : id_b));
-    if (id_a == id_b) in.fail(fmt::format("bond joins particle {} to itself", id_a));
+      in.fail(fmt::format("{} names particle id {}, which the file does not define", pair,
+                          (a == index_of_.end() ? id_a : id_b) + shown_),
+              "bond only particles that the file lists");
+    if (id_a == id_b)
+      in.fail(fmt::format("{} joins a particle to itself", pair), "a bond joins two particles");
     const auto i = std::min(a->second, b->second), j = std::max(a->second, b->second);
     if (rest_length < 0.0) rest_length = norm(sample.position[j] - sample.position[i]);
     if (!(rest_length > 0.0))
-      in.fail(fmt::format("bond {}-{} has rest length {} mm", id_a, id_b, rest_length));
+      in.fail(fmt::format("{} has rest length {} mm", pair, rest_length),
+              "give a rest length > 0, or particles at distinct positions");
     if (!bond_keys_.emplace((std::uint64_t{i} << 32) | j, 0).second)
-      in.fail(fmt::format("bond {}-{} appears twice", id_a, id_b), "list each bonded pair once");
+      in.fail(fmt::format("{} appears twice", pair), "list each bonded pair once");
     sample.bonds.push_back({i, j, rest_length});
   }
   Sample finish() {
@@ -157,6 +167,7 @@ class SampleAssembler {
   Sample sample;
 
  private:
+  std::int64_t shown_;
   std::unordered_map<std::int64_t, std::uint32_t> index_of_;
   std::unordered_map<std::uint64_t, char> bond_keys_;
 };
