@@ -2,6 +2,7 @@
 // it, stops the command with exit code 2 and one line naming the file, the line or field, the
 // problem and the fix, and leaves nothing behind (no output file, no temporary file). The table
 // doubles as the list in docs/reliability.md; cases found by the fuzzers (fuzz/) are added here.
+// (A scan's base config is never reached: each scan case is refused before it is read.)
 // Checkpoints have no command of their own yet: their reader is checked directly (InputError is
 // what the CLI turns into exit code 2).
 #include <gmock/gmock.h>
@@ -60,6 +61,9 @@ const std::string lsm_header =
 const std::string lsm_particles =
     "BeginParticles\nSimple\n2\n0.5 0.5 0.5 0.5 0 1\n0.5 1.5 0.5 0.5 1 2\nEndParticles\n";
 const std::string lsm_connect = "BeginConnect\n1\n0 1 0\nEndConnect\n";
+const std::string scan_grid =
+    "[grid]\nk_n = { from = 1e3, to = 1e4, count = 2 }\nb_d = { from = 1e-3, to = 1e-2, count = 2 }\n";
+const std::string scan_config = "[scan]\nbase = \"base.toml\"\n" + scan_grid;
 const std::string block_config =
     "[sample]\nlattice = \"block\"\nlattice_cells = [2, 3, 1]\nlattice_radius = 0.5\n";
 
@@ -77,6 +81,7 @@ const char* const convert_own = "sample convert {in} {dir}/out.data";
 const char* const convert_foreign = "sample convert {in} {dir}/out.sample";
 const char* const analyze = "analyze {in} -o {dir}/analysis.json";
 const char* const fbm_curves = "fbm curves --dist file:{in} --out {dir}/curve.csv";
+const char* const scan = "scan {in} -o {dir}/scan";
 
 std::vector<BadInput> bad_inputs() {
   return {
@@ -172,6 +177,18 @@ std::vector<BadInput> bad_inputs() {
        "bad.txt:2: threshold -0.5 is negative; thresholds are breaking strains, >= 0"},
       {"thresholds_none", "bad.txt", "# nothing yet\n\n", fbm_curves,
        "bad.txt: no thresholds in the file; write one threshold (a breaking strain) per line"},
+      // --- scan configs (TOML) ---
+      {"scan_toml_syntax", "bad.toml", "[scan]\nbase = \"base.toml\"\n[grid\n", scan,
+       "bad.toml:3: Error while parsing table header: expected ']', saw '\\n'; fix the TOML syntax"},
+      {"scan_unknown_key", "bad.toml", "[scan]\nbase = \"base.toml\"\nbogus = 1\n" + scan_grid, scan,
+       "bad.toml: scan.bogus: unknown key; valid keys: scan.base, scan.output, scan.set"},
+      {"scan_negative_range", "bad.toml", replaced(scan_config, "from = 1e3", "from = -1e3"), scan,
+       "bad.toml: grid.k_n: from = -1000, to = 10000, count = 2; give from > 0, to > 0 and a count of 1 or "
+       "more"},
+      {"scan_unknown_ramp_rule", "bad.toml", scan_config + "[rules]\nramp = \"sideways\"\n", scan,
+       "bad.toml: rules.ramp: 'sideways' is not a ramp rule; use \"scaled\" or \"base\""},
+      {"scan_no_points", "bad.toml", "[scan]\nbase = \"base.toml\"\n", scan,
+       "bad.toml: no points; add a [grid] with k_n and b_d ranges, or [[points]] entries"},
   };
 }
 
