@@ -223,8 +223,11 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     figure.height = 1100;
   }
   figure.caption = "Loading curves: force on the top plate F, elastic energy E_e and energy rate ℰ = dE_e/dx against "
-                   "strain, each over its maximum (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max); "
-                   "dashed lines mark x_p, x_c and x_m from analysis.json";
+                   "strain, each over its maximum";
+  figure.caption += analysis.is_null()
+                        ? " (ℰ by centred differences of the recorded E_e; run `rupture analyze` for the filtered one)"
+                        : " (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max); dashed lines mark "
+                          "x_p, x_c and x_m from analysis.json";
   figure.caption += figure.panels.size() > 1 ? ", and the lower panel the posterior density of δ_x = x_c - x_p." : ".";
   return figure;
 }
