@@ -1,7 +1,7 @@
 // scan/results: the scan's results table (results.csv): one row per point, every analysed quantity
 // with its uncertainty, the run's outcome and the point's own choices (dt, ramp, stop strain).
 // Owns: the column list, the row as JSON (what a point's result.json stores), writing and reading the
-// table. Not: running points (scan/runner) or drawing figures from the table.
+// table. Not: running points (scan/ledger, scan/farm) or drawing figures from the table.
 //
 // The table follows the project's CSV convention (docs/formats.md) with two additions that numbers
 // alone cannot carry: columns without a `[unit]` hold text (status, stop_reason, class, why), and an
