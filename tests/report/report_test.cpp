@@ -3,6 +3,7 @@
 // numbers and the config, and renders in headless Chromium with every figure decoded and no console
 // message.
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <zlib.h>
@@ -64,8 +66,10 @@ PageFacts check_well_formed(const std::string& html) {
     if (ch == '&') {
       const auto end = html.find(';', i);
       const std::string entity = end == std::string::npos ? "" : html.substr(i + 1, end - i - 1);
-      const bool named = !entity.empty() && std::all_of(entity.begin(), entity.end(), ::isalpha);
-      const bool numeric = entity.size() > 1 && entity[0] == '#' && std::all_of(entity.begin() + 1, entity.end(), ::isdigit);
+      const auto letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
+      const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+      const bool named = !entity.empty() && std::all_of(entity.begin(), entity.end(), letter);
+      const bool numeric = entity.size() > 1 && entity[0] == '#' && std::all_of(entity.begin() + 1, entity.end(), digit);
       if (!named && !numeric) return fail("bare '&'"), facts;
       if (cell) *cell += html.substr(i, end - i + 1);
       i = end + 1;
@@ -201,6 +205,18 @@ TEST(Report, Base64AndEscapingFollowTheStandards) {
   EXPECT_EQ(report::base64("foobar"), "Zm9vYmFy");
   EXPECT_EQ(decode_base64(report::base64(std::string("\x00\xff\x10 png", 8))), std::string("\x00\xff\x10 png", 8));
   EXPECT_EQ(report::escape_html(R"(<a href="x">&'</a>)"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
+}
+
+// The page checker itself: each kind of fault it exists for is reported.
+TEST(Report, HtmlCheckerCatchesBrokenPages) {
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><p></div></body></html>"), "</div> closes <p>");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body>a & b</body></html>"), "bare '&'");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><img src=x></body></html>"), "quoted value");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><p>open</body></html>"), "closes <p>");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><style>b{background:url(x.png)}</style></body></html>"),
+                          "mentions url(");
+  const auto facts = check_well_formed("<!DOCTYPE html>\n<html><body><a href=\"figures/loading.png\">x</a></body></html>");
+  EXPECT_EQ(facts.references, std::vector<std::string>{"figures/loading.png"});
 }
 
 TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
