@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <cstring>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,12 +50,30 @@ std::string series_plot(const Series& s, std::size_t index, const std::string& d
                      columns, with, s.title.empty() ? std::string("notitle") : "title " + quoted(s.title));
 }
 
+// Scale, tics and number format of one axis. Log axes label the decades as 10^n; one spanning less
+// than two decades would show a single labelled tic or none, so it labels 1, 2 and 5 x 10^n instead.
+std::string axis_settings(char axis, bool log, const std::string& range) {
+  if (!log) return fmt::format("  unset logscale {0}\n  set {0}tics autofreq\n  set format {0} \"% h\"\n", axis);
+  double low = 0.0, high = 0.0;
+  if (std::sscanf(range.c_str(), "[%lf:%lf]", &low, &high) != 2 || !(low > 0.0) || !(high < 100.0 * low)) {
+    return fmt::format("  set logscale {0} 10\n  set {0}tics autofreq\n  set format {0} \"10^{{%L}}\"\n", axis);
+  }
+  std::vector<std::string> tics;
+  for (int decade = static_cast<int>(std::floor(std::log10(low))); decade <= static_cast<int>(std::ceil(std::log10(high))); ++decade) {
+    for (double mantissa : {1.0, 2.0, 5.0}) {
+      const double value = mantissa * std::pow(10.0, decade);
+      if (value >= low && value <= high) tics.push_back(fmt::format("{:g}", value));
+    }
+  }
+  if (tics.size() < 2) return fmt::format("  set logscale {0} 10\n  set {0}tics autofreq\n  set format {0} \"%g\"\n", axis);
+  return fmt::format("  set logscale {0} 10\n  set {0}tics ({1})\n  set format {0} \"%g\"\n", axis, fmt::join(tics, ", "));
+}
+
 void append_panel(std::string& gp, const Panel& panel, const std::string& data_file) {
   gp += fmt::format("  set title {}\n  set xlabel {}\n  set ylabel {}\n  set xrange {}\n  set yrange {}\n",
                     quoted(panel.title), quoted(panel.xlabel), quoted(panel.ylabel), panel.xrange, panel.yrange);
   // Every setting a panel may change is set again for each panel: multiplot panels share state.
-  gp += panel.log_x ? "  set logscale x 10\n  set format x \"10^{%L}\"\n" : "  unset logscale x\n  set format x \"% h\"\n";
-  gp += panel.log_y ? "  set logscale y 10\n  set format y \"10^{%L}\"\n" : "  unset logscale y\n  set format y \"% h\"\n";
+  gp += axis_settings('x', panel.log_x, panel.xrange) + axis_settings('y', panel.log_y, panel.yrange);
   gp += panel.equal_axes ? "  set size ratio -1\n" : "  set size noratio\n";
   if (panel.cblabel.empty()) {
     gp += "  unset colorbox\n";
