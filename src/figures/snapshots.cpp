@@ -1,6 +1,7 @@
 #include "figures/snapshots.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <string_view>

@@ -1,8 +1,6 @@
 #include "report/report.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <optional>
 #include <vector>
 
 #include <fmt/format.h>
