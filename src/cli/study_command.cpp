@@ -2,12 +2,12 @@
 // a reduced tissue is generated, pulled to separation, analysed for the precursor, plotted and reported.
 // The default config is embedded below and written into the study folder, so the study records
 // exactly what it ran; `--config` and `--set` change it.
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
@@ -26,7 +26,8 @@ namespace {
 // The reduced tissue (same material as the paper's 80 x 25 x 5 mm sample, 20 x 10 x 5 mm) pulled at
 // the paper's 50 mm/s with a stiffness and breaking distance that give one well-pronounced force
 // peak within a few minutes on two cores.
-constexpr const char* default_study_config = R"(# rupture study: the default reduced tissue pulled to separation.
+constexpr const char* default_study_config =
+    R"(# rupture study: the default reduced tissue pulled to separation.
 # Every key: rupture run --help-config. Units: mm, N/mm, g/mm^3, s, mm/s.
 
 [sample]
@@ -65,10 +66,12 @@ struct StudyOptions {
 void add_study_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<StudyOptions>();
   auto* cmd = app.add_subcommand(
-      "study", "The whole study on the default reduced tissue: generate, pull to separation, analyse, plot, report");
+      "study",
+      "The whole study on the default reduced tissue: generate, pull to separation, analyse, plot, report");
   cmd->add_option("-o,--out", o->out, "Study folder (created; its run/ folder is replaced)");
   cmd->add_option("--config", o->config, "Run config to use instead of the embedded default (TOML)");
-  cmd->add_option("--set", o->overrides, "Override a config key, e.g. --set bonds.break_distance=0.01 (repeatable)");
+  cmd->add_option("--set", o->overrides,
+                  "Override a config key, e.g. --set bonds.break_distance=0.01 (repeatable)");
   cmd->callback([o, &exit_code] {
     namespace fs = std::filesystem;
     const fs::path out(o->out);
@@ -97,9 +100,10 @@ void add_study_command(CLI::App& app, int& exit_code) {
     if (!o->config.empty()) command += " --config " + o->config;
     for (const auto& s : o->overrides) command += " --set " + s;
     const auto summary = loading::run_simulation(config, sample, run_folder, command);
-    fmt::print("      {} ({}) after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s, energy balance {:.2g}\n",
-               summary.status, summary.stop_reason, summary.steps, summary.strain, summary.broken_bonds,
-               summary.wall_seconds, summary.max_relative_energy_error);
+    fmt::print(
+        "      {} ({}) after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s, energy balance {:.2g}\n",
+        summary.status, summary.stop_reason, summary.steps, summary.strain, summary.broken_bonds,
+        summary.wall_seconds, summary.max_relative_energy_error);
 
     fmt::print("[3/4] precursor analysis\n");
     AnalyzeOptions analyze;
@@ -112,10 +116,11 @@ void add_study_command(CLI::App& app, int& exit_code) {
     fmt::print("      {} figures in {}\n", report.figures, (run_folder / "figures").string());
     const std::string html = fs::absolute(report.html).lexically_normal().string();
     if (r.x_p && r.x_c && r.delay) {
-      fmt::print("report: {}; precursor: x_p = {:.3g} % before x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
-                 "[{:.2g}, {:.2g}] %){}\n",
-                 html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
-                 r.accepted ? "" : "; analysis rejected: " + r.rejection);
+      fmt::print(
+          "report: {}; precursor: x_p = {:.3g} % before x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
+          "[{:.2g}, {:.2g}] %){}\n",
+          html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
+          r.accepted ? "" : "; analysis rejected: " + r.rejection);
     } else {
       fmt::print("report: {}; no precursor found ({})\n", html, r.accepted ? "no peak" : r.rejection);
     }

@@ -1,19 +1,18 @@
 #include "figures/figures.hpp"
 
-#include "figures/scan_figures.hpp"
-#include "figures/snapshots.hpp"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "analysis/analysis.hpp"
 #include "core/error.hpp"
+#include "figures/scan_figures.hpp"
+#include "figures/snapshots.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "rupture/version.hpp"
@@ -38,7 +37,8 @@ std::size_t argmax(const std::vector<double>& v) {
 std::vector<double> normalised(std::vector<double> v, const std::string& what, const std::string& source) {
   const double top = v.empty() ? nan : v[argmax(v)];
   if (!(top > 0.0)) {
-    throw InputError(source, fmt::format("{} is never positive, so it cannot be normalised to its maximum", what),
+    throw InputError(source,
+                     fmt::format("{} is never positive, so it cannot be normalised to its maximum", what),
                      "plot a curve that loads the sample");
   }
   for (auto& value : v) value /= top;
@@ -74,9 +74,10 @@ Panel loading_panel(std::size_t rate_block, std::size_t rate_column, const std::
   panel.ylabel = "normalised value [1]";
   // Negative parts (unloading after failure) fall below the frame, as in the paper's figures.
   panel.yrange = "[0:1.12]";
-  panel.series = {{.y_column = 1, .title = "force F/F_{max}"},
-                  {.y_column = 2, .title = "elastic energy E_e/E_{e,max}"},
-                  {.block = rate_block, .y_column = rate_column, .title = "energy rate ℰ/ℰ_{max}, ℰ = dE_e/dx"}};
+  panel.series = {
+      {.y_column = 1, .title = "force F/F_{max}"},
+      {.y_column = 2, .title = "elastic energy E_e/E_{e,max}"},
+      {.block = rate_block, .y_column = rate_column, .title = "energy rate ℰ/ℰ_{max}, ℰ = dE_e/dx"}};
   panel.markers = std::move(markers);
   return panel;
 }
@@ -90,7 +91,8 @@ Figure fbm_figure(const io::CsvTable& table, const fs::path& input) {
   figure.name = input.stem().string();
   figure.provenance = provenance(input, {input});
   // The three maxima of the ELS curves: x_p (ℰ) before x_c (F) before x_m (E_e), the paper's figure 3.
-  std::vector<Marker> markers{{x[argmax(rate)], "x_p"}, {x[argmax(force)], "x_c"}, {x[argmax(energy)], "x_m"}};
+  std::vector<Marker> markers{
+      {x[argmax(rate)], "x_p"}, {x[argmax(force)], "x_c"}, {x[argmax(energy)], "x_m"}};
   const std::string strain_field = table.header[table.require("strain")];
   figure.blocks.push_back({"ELS curves normalised to their maxima",
                            {strain_field, "F/F_max[1]", "E_e/E_e,max[1]", "Erate/Erate_max[1]"},
@@ -99,8 +101,9 @@ Figure fbm_figure(const io::CsvTable& table, const fs::path& input) {
                             normalised(rate, "the energy rate dE_e/dx", table.source)}});
   figure.panels.push_back(loading_panel(0, 3, strain_field, std::move(markers)));
   figure.panels.front().title = "Fiber bundle: F, E_e and ℰ over their maxima";
-  figure.caption = "Fiber bundle: force F, elastic energy E_e and energy rate ℰ = dE_e/dx, each over its maximum, "
-                   "with their maxima x_p (ℰ) < x_c (F) < x_m (E_e) marked (the paper's figure 3).";
+  figure.caption =
+      "Fiber bundle: force F, elastic energy E_e and energy rate ℰ = dE_e/dx, each over its maximum, "
+      "with their maxima x_p (ℰ) < x_c (F) < x_m (E_e) marked (the paper's figure 3).";
   return figure;
 }
 
@@ -113,7 +116,8 @@ std::optional<double> json_value(const nlohmann::json& analysis, const char* key
 // ℰ = dE_e/dx as the analysis computed it — the same columns, filter and derivative window that
 // analysis.json records, so the automatic choices are not made again — on the analysis' uniform strain
 // grid, divided by the fitted ℰ_max so that the marked x_p sits at the top of the curve.
-DataBlock analysed_rate(const io::CsvTable& curves, const nlohmann::json& analysis, const std::string& strain_field) {
+DataBlock analysed_rate(const io::CsvTable& curves, const nlohmann::json& analysis,
+                        const std::string& strain_field) {
   const auto& inputs = analysis.at("inputs");
   analysis::ColumnChoice columns;
   columns.strain = inputs.at("columns").at("strain").get<std::string>();
@@ -169,8 +173,9 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
       analysis = nlohmann::json::parse(io::read_text_file(analysis_file));
       const std::string strain_unit = analysis.at("units").at("strain").get<std::string>();
       if (strain_unit != io::column_unit(curves.header[strain_column])) {
-        throw InputError(analysis_file.string(), fmt::format("strain unit '{}' differs from the curves' '{}'", strain_unit,
-                                                             io::column_unit(curves.header[strain_column])),
+        throw InputError(analysis_file.string(),
+                         fmt::format("strain unit '{}' differs from the curves' '{}'", strain_unit,
+                                     io::column_unit(curves.header[strain_column])),
                          "rerun `rupture analyze` on these curves");
       }
       for (const char* key : {"x_p", "x_c", "x_m"}) {
@@ -192,7 +197,8 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     // Not analysed: centred differences of the raw E_e, noisy but honest.
     raw.title += " (energy rate by centred differences of E_e)";
     raw.header.push_back("Erate/Erate_max[1]");
-    raw.columns.push_back(normalised(centred_difference(x, energy), "the energy rate dE_e/dx", curves.source));
+    raw.columns.push_back(
+        normalised(centred_difference(x, energy), "the energy rate dE_e/dx", curves.source));
     figure.blocks.push_back(std::move(raw));
     figure.panels.push_back(loading_panel(0, 3, strain_field, std::move(markers)));
   } else {
@@ -207,10 +213,11 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     const std::string density_unit = posterior.at("density_unit").get<std::string>();
     figure.blocks.push_back({"posterior density of the delay delta_x",
                              {fmt::format("delta_x[{}]", unit), fmt::format("density[{}]", density_unit)},
-                             {posterior.at("delta").get<std::vector<double>>(), posterior.at("density").get<std::vector<double>>()}});
+                             {posterior.at("delta").get<std::vector<double>>(),
+                              posterior.at("density").get<std::vector<double>>()}});
     Panel panel;
-    panel.title = fmt::format("Delay between the ℰ and F maxima: δ_x = {:.3g} ± {:.2g} {}", delta.at("mean").get<double>(),
-                              delta.at("sd").get<double>(), unit);
+    panel.title = fmt::format("Delay between the ℰ and F maxima: δ_x = {:.3g} ± {:.2g} {}",
+                              delta.at("mean").get<double>(), delta.at("sd").get<double>(), unit);
     panel.xlabel = fmt::format("delay δ_x [{}]", unit);
     panel.ylabel = fmt::format("posterior density [{}]", density_unit);
     panel.yrange = "[0:*]";
@@ -222,18 +229,22 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     figure.panels.push_back(std::move(panel));
     figure.height = 1100;
   }
-  figure.caption = "Loading curves: force on the top plate F, elastic energy E_e and energy rate ℰ = dE_e/dx against "
-                   "strain, each over its maximum";
-  figure.caption += analysis.is_null()
-                        ? " (ℰ by centred differences of the recorded E_e; run `rupture analyze` for the filtered one)"
-                        : " (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max); dashed lines mark "
-                          "x_p, x_c and x_m from analysis.json";
-  figure.caption += figure.panels.size() > 1 ? ", and the lower panel the posterior density of δ_x = x_c - x_p." : ".";
+  figure.caption =
+      "Loading curves: force on the top plate F, elastic energy E_e and energy rate ℰ = dE_e/dx against "
+      "strain, each over its maximum";
+  figure.caption +=
+      analysis.is_null()
+          ? " (ℰ by centred differences of the recorded E_e; run `rupture analyze` for the filtered one)"
+          : " (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max); dashed lines mark "
+            "x_p, x_c and x_m from analysis.json";
+  figure.caption +=
+      figure.panels.size() > 1 ? ", and the lower panel the posterior density of δ_x = x_c - x_p." : ".";
   return figure;
 }
 
 // Bonds broken per unit strain, histogrammed over the run's strain range.
-std::optional<Figure> breaks_figure(const io::CsvTable& breaks, const io::CsvTable& curves, const fs::path& input) {
+std::optional<Figure> breaks_figure(const io::CsvTable& breaks, const io::CsvTable& curves,
+                                    const fs::path& input) {
   const std::size_t strain_column = breaks.require("strain");
   const auto& strain = breaks.columns[strain_column];
   if (strain.empty()) return std::nullopt;  // nothing broke: no histogram to draw
@@ -249,8 +260,10 @@ std::optional<Figure> breaks_figure(const io::CsvTable& breaks, const io::CsvTab
   Figure figure;
   figure.name = "breaking_rate";
   figure.provenance = provenance(input, {breaks.source, curves.source});
-  figure.blocks.push_back({fmt::format("bonds broken per unit strain, {} bins of {} {}", break_bins, width, unit),
-                           {fmt::format("strain[{}]", unit), fmt::format("rate[1/{}]", unit)}, {centre, rate}});
+  figure.blocks.push_back(
+      {fmt::format("bonds broken per unit strain, {} bins of {} {}", break_bins, width, unit),
+       {fmt::format("strain[{}]", unit), fmt::format("rate[1/{}]", unit)},
+       {centre, rate}});
   Panel panel;
   panel.title = fmt::format("Bond-breaking rate ({} bonds broken)", strain.size());
   panel.xlabel = fmt::format("strain x [{}]", unit);
@@ -258,8 +271,10 @@ std::optional<Figure> breaks_figure(const io::CsvTable& breaks, const io::CsvTab
   panel.yrange = "[0:*]";
   panel.series = {{.title = "bond-breaking rate", .style = Style::boxes}};
   figure.panels.push_back(std::move(panel));
-  figure.caption = fmt::format("Bond-breaking rate: bonds broken per unit strain in {} bins; bar height times bin width "
-                               "counts each of the {} broken bonds once.", break_bins, strain.size());
+  figure.caption = fmt::format(
+      "Bond-breaking rate: bonds broken per unit strain in {} bins; bar height times bin width "
+      "counts each of the {} broken bonds once.",
+      break_bins, strain.size());
   return figure;
 }
 
@@ -286,8 +301,8 @@ namespace {
 
 // The snapshots to draw: at the strains asked for, else near x_p and x_c (from analysis.json) and the
 // last one, else a third, two thirds and the end of the recorded ones.
-std::vector<SnapshotFile> chosen_snapshots(const std::vector<SnapshotFile>& all, const fs::path& analysis_file,
-                                           const std::vector<double>& wanted) {
+std::vector<SnapshotFile> chosen_snapshots(const std::vector<SnapshotFile>& all,
+                                           const fs::path& analysis_file, const std::vector<double>& wanted) {
   if (all.empty()) return {};
   if (!wanted.empty()) return nearest_snapshots(all, wanted);
   std::vector<double> strains;
@@ -298,18 +313,21 @@ std::vector<SnapshotFile> chosen_snapshots(const std::vector<SnapshotFile>& all,
         strains.push_back(analysis[key].value("value", nan));
     }
   }
-  strains.erase(std::remove_if(strains.begin(), strains.end(), [](double v) { return !std::isfinite(v); }), strains.end());
+  strains.erase(std::remove_if(strains.begin(), strains.end(), [](double v) { return !std::isfinite(v); }),
+                strains.end());
   if (strains.empty()) strains = {all[all.size() / 3].strain, all[2 * all.size() / 3].strain};
   strains.push_back(all.back().strain);
   return nearest_snapshots(all, strains);
 }
 
-std::vector<Figure> run_figures(const io::CsvTable& curves, const fs::path& input, const PlotOptions& options) {
+std::vector<Figure> run_figures(const io::CsvTable& curves, const fs::path& input,
+                                const PlotOptions& options) {
   const fs::path run_folder = curves.source.empty() ? fs::path() : fs::path(curves.source).parent_path();
   std::vector<Figure> figures;
   figures.push_back(run_figure(curves, input, run_folder / "analysis.json"));
   if (fs::exists(run_folder / "breaks.csv")) {
-    if (auto figure = breaks_figure(io::read_csv(run_folder / "breaks.csv"), curves, input)) figures.push_back(std::move(*figure));
+    if (auto figure = breaks_figure(io::read_csv(run_folder / "breaks.csv"), curves, input))
+      figures.push_back(std::move(*figure));
   }
   const auto all = list_snapshots(run_folder, curves);
   if (all.empty() && !options.snapshot_strains.empty()) {
@@ -329,7 +347,8 @@ std::vector<Figure> run_figures(const io::CsvTable& curves, const fs::path& inpu
 
 std::vector<Drawn> plot(const fs::path& input, const fs::path& out, const PlotOptions& options) {
   if (!fs::exists(input)) {
-    throw InputError(input.string(), "no such file or folder", "give a run folder, a scan folder or a curves CSV");
+    throw InputError(input.string(), "no such file or folder",
+                     "give a run folder, a scan folder or a curves CSV");
   }
   std::vector<Figure> figures;
   if (is_scan_folder(input)) {
@@ -338,22 +357,27 @@ std::vector<Drawn> plot(const fs::path& input, const fs::path& out, const PlotOp
     const bool folder = fs::is_directory(input);
     const fs::path curves_file = folder ? input / "curves.csv" : input;
     if (folder && !fs::exists(curves_file)) {
-      throw InputError(input.string(), "no curves.csv or results.csv in this folder",
-                       "give a folder written by `rupture run` or `rupture scan`, or the path of a curves CSV");
+      throw InputError(
+          input.string(), "no curves.csv or results.csv in this folder",
+          "give a folder written by `rupture run` or `rupture scan`, or the path of a curves CSV");
     }
     const io::CsvTable curves = io::read_csv(curves_file);
     if (curves.rows() < 3) {
-      throw InputError(curves_file.string(), fmt::format("{} rows; a loading curve needs at least 3", curves.rows()),
+      throw InputError(curves_file.string(),
+                       fmt::format("{} rows; a loading curve needs at least 3", curves.rows()),
                        "plot a longer run");
     }
-    if (is_run_curves(curves)) figures = run_figures(curves, input, options);
-    else figures.push_back(fbm_figure(curves, input));
+    if (is_run_curves(curves))
+      figures = run_figures(curves, input, options);
+    else
+      figures.push_back(fbm_figure(curves, input));
   }
   std::error_code error;
   fs::create_directories(out, error);
   if (error) throw RunError(fmt::format("cannot create {}: {}", out.string(), error.message()));
   std::vector<Drawn> drawn;
-  for (const auto& figure : figures) drawn.push_back({figure.name, figure.caption, draw(figure, out, options.format)});
+  for (const auto& figure : figures)
+    drawn.push_back({figure.name, figure.caption, draw(figure, out, options.format)});
   return drawn;
 }
 

@@ -29,7 +29,8 @@ struct Drawn {
 
 // `input` is a run folder (curves.csv, optional analysis.json, breaks.csv and snapshots.pvd), a run's
 // curves.csv, an FBM curve CSV (strain, force, elastic_energy, energy_rate columns) or a scan folder
-// (results.csv). Figures go to `out` (created if needed). Bad input throws InputError; gnuplot trouble RunError.
+// (results.csv). Figures go to `out` (created if needed). Bad input throws InputError; gnuplot trouble
+// RunError.
 std::vector<Drawn> plot(const std::filesystem::path& input, const std::filesystem::path& out,
                         const PlotOptions& options = {});
 

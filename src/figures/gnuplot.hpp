@@ -29,11 +29,11 @@ struct Series {
   std::size_t block = 0;     // DataBlock index
   std::size_t x_column = 0;  // 0-based column in that block
   std::size_t y_column = 1;
-  std::string title{};       // legend text (gnuplot enhanced text: E_e, F_{max}); empty: not in the legend
+  std::string title{};  // legend text (gnuplot enhanced text: E_e, F_{max}); empty: not in the legend
   Style style = Style::lines;
   std::vector<std::size_t> extra_columns{};
-  std::string color{};       // "#rrggbb"; empty: gnuplot's colour number (series index + 1)
-  int point_type = 7;        // gnuplot pt: 7 filled circle, 5 filled square, 9 filled triangle, 3 star
+  std::string color{};  // "#rrggbb"; empty: gnuplot's colour number (series index + 1)
+  int point_type = 7;   // gnuplot pt: 7 filled circle, 5 filled square, 9 filled triangle, 3 star
   double point_size = 1.2;
 };
 
@@ -55,12 +55,12 @@ struct Panel {
 };
 
 struct Figure {
-  std::string name;                   // file stem: NAME.gp, NAME.dat, NAME.png, NAME.svg
-  std::string caption;                // one sentence saying what the figure shows (report captions)
-  int width = 1000, height = 700;     // pixels (png) and points (svg)
+  std::string name;                     // file stem: NAME.gp, NAME.dat, NAME.png, NAME.svg
+  std::string caption;                  // one sentence saying what the figure shows (report captions)
+  int width = 1000, height = 700;       // pixels (png) and points (svg)
   std::vector<std::string> provenance;  // '#' lines at the top of both files: version, inputs
   std::vector<DataBlock> blocks;
-  std::vector<Panel> panels;          // stacked top to bottom
+  std::vector<Panel> panels;  // stacked top to bottom
 };
 
 std::string data_text(const Figure& figure);
@@ -70,7 +70,8 @@ std::string script_text(const Figure& figure, Format format);
 // files written. Any gnuplot output on stdout/stderr (warnings included) or a non-zero exit is a
 // RunError quoting it; a missing gnuplot is a RunError saying how to install it. The program is
 // $RUPTURE_GNUPLOT if set, else `gnuplot` from PATH.
-std::vector<std::filesystem::path> draw(const Figure& figure, const std::filesystem::path& folder, Format format);
+std::vector<std::filesystem::path> draw(const Figure& figure, const std::filesystem::path& folder,
+                                        Format format);
 
 // Runs gnuplot on `script` with `folder` as working directory; returns its combined stdout+stderr.
 // Throws RunError when gnuplot cannot be started or exits non-zero.

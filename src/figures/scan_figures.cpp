@@ -1,10 +1,10 @@
 #include "figures/scan_figures.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
@@ -24,8 +24,10 @@ struct ClassStyle {
   const char* name;
   const char* color;
 };
-constexpr ClassStyle class_styles[] = {
-    {"brittle", "#1f77b4"}, {"hyper-elastic", "#d62728"}, {"semi-ductile", "#2ca02c"}, {"ductile", "#ff7f0e"}};
+constexpr ClassStyle class_styles[] = {{"brittle", "#1f77b4"},
+                                       {"hyper-elastic", "#d62728"},
+                                       {"semi-ductile", "#2ca02c"},
+                                       {"ductile", "#ff7f0e"}};
 
 // One results.csv row, the fields the figures read.
 struct Point {
@@ -92,8 +94,10 @@ std::optional<Figure> mechanism_map(const std::vector<Point>& points) {
   panel.xlabel = "bond stiffness k_n [N/mm]";
   panel.ylabel = "breaking distance b_d [mm]";
   panel.log_x = panel.log_y = true;
-  const auto [k_low, k_high] = std::minmax_element(points.begin(), points.end(), [](auto& a, auto& b) { return a.k_n < b.k_n; });
-  const auto [b_low, b_high] = std::minmax_element(points.begin(), points.end(), [](auto& a, auto& b) { return a.b_d < b.b_d; });
+  const auto [k_low, k_high] =
+      std::minmax_element(points.begin(), points.end(), [](auto& a, auto& b) { return a.k_n < b.k_n; });
+  const auto [b_low, b_high] =
+      std::minmax_element(points.begin(), points.end(), [](auto& a, auto& b) { return a.b_d < b.b_d; });
   panel.xrange = log_range(k_low->k_n, k_high->k_n);
   panel.yrange = log_range(b_low->b_d, b_high->b_d);
   const std::vector<std::string> header{"k_n[N/mm]", "b_d[mm]"};
@@ -104,23 +108,31 @@ std::optional<Figure> mechanism_map(const std::vector<Point>& points) {
     return c;
   };
   for (const auto& style : class_styles) {
-    add_group(figure, panel, std::string("class ") + style.name, header,
-              columns_where([&](const Point& p) { return p.status == scan::status::ok && p.mechanism == style.name; }),
+    add_group(figure, panel, std::string("class ") + style.name, header, columns_where([&](const Point& p) {
+                return p.status == scan::status::ok && p.mechanism == style.name;
+              }),
               {.title = style.name, .style = Style::points, .color = style.color, .point_size = 2.0});
   }
   const auto unclassified = [](const Point& p) {
-    return p.status != scan::status::ok ||
-           std::none_of(std::begin(class_styles), std::end(class_styles), [&](auto& s) { return p.mechanism == s.name; });
+    return p.status != scan::status::ok || std::none_of(std::begin(class_styles), std::end(class_styles),
+                                                        [&](auto& s) { return p.mechanism == s.name; });
   };
   add_group(figure, panel, "points without a class (not separated, unstable, failed or unfinished)", header,
-            columns_where(unclassified), {.title = "no class (not separated, failed)", .style = Style::points, .color = "#888888", .point_type = 2, .point_size = 1.5});
-  add_group(figure, panel, fmt::format("points with Gamma > {}", gamma_far), header,
-            columns_where([](const Point& p) { return p.gamma && *p.gamma > gamma_far; }),
-            {.title = "Γ > 5", .style = Style::points, .color = "#000000", .point_type = 3, .point_size = 3.0});
+            columns_where(unclassified),
+            {.title = "no class (not separated, failed)",
+             .style = Style::points,
+             .color = "#888888",
+             .point_type = 2,
+             .point_size = 1.5});
+  add_group(
+      figure, panel, fmt::format("points with Gamma > {}", gamma_far), header,
+      columns_where([](const Point& p) { return p.gamma && *p.gamma > gamma_far; }),
+      {.title = "Γ > 5", .style = Style::points, .color = "#000000", .point_type = 3, .point_size = 3.0});
   figure.panels.push_back(std::move(panel));
-  figure.caption = "Mechanism map (the paper's figure 15): each scan point at its bond stiffness k_n and breaking "
-                   "distance b_d, coloured by its breaking-mechanism class; a star marks Γ > 5, an energy maximum "
-                   "far behind the force maximum.";
+  figure.caption =
+      "Mechanism map (the paper's figure 15): each scan point at its bond stiffness k_n and breaking "
+      "distance b_d, coloured by its breaking-mechanism class; a star marks Γ > 5, an energy maximum "
+      "far behind the force maximum.";
   return figure;
 }
 
@@ -145,8 +157,9 @@ std::optional<Figure> delay_figure(const std::vector<Point>& points) {
   Figure figure;
   figure.name = "delay_vs_critical";
   Panel panel;
-  panel.title = fmt::format("Delay of failure behind the precursor ({} analysed points{})", c[0].size() + not_positive,
-                            not_positive ? fmt::format("; {} with δ_x ≤ 0 cannot be shown on log axes", not_positive) : "");
+  panel.title = fmt::format(
+      "Delay of failure behind the precursor ({} analysed points{})", c[0].size() + not_positive,
+      not_positive ? fmt::format("; {} with δ_x ≤ 0 cannot be shown on log axes", not_positive) : "");
   panel.xlabel = "critical strain x_c [%]";
   panel.ylabel = "delay δ_x = x_c - x_p [%]";
   panel.log_x = panel.log_y = true;
@@ -155,9 +168,15 @@ std::optional<Figure> delay_figure(const std::vector<Point>& points) {
   const double line_low = *x_low / 3.0, line_high = *x_high * 3.0;
   panel.xrange = log_range(*x_low, *x_high, 3.0);
   panel.yrange = log_range(std::min(*y_low, line_low * 0.1), std::max(*y_high, line_high / 3.0), 3.0);
-  add_group(figure, panel, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval",
-            {"x_c[%]", "delta_x[%]", "x_c_low[%]", "x_c_high[%]", "delta_x_lo68[%]", "delta_x_hi68[%]"}, std::move(c),
-            {.title = "DEM runs (68 % intervals)", .style = Style::xyerrorbars, .extra_columns = {2, 3, 4, 5}, .color = "#1f77b4", .point_size = 1.3});
+  add_group(figure, panel,
+            "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval",
+            {"x_c[%]", "delta_x[%]", "x_c_low[%]", "x_c_high[%]", "delta_x_lo68[%]", "delta_x_hi68[%]"},
+            std::move(c),
+            {.title = "DEM runs (68 % intervals)",
+             .style = Style::xyerrorbars,
+             .extra_columns = {2, 3, 4, 5},
+             .color = "#1f77b4",
+             .point_size = 1.3});
   // Eq. 16: x_c = r(α) x_p, so δ_x = (1 - 1/r(α)) x_c.
   for (const auto& [alpha, color] : {std::pair{alpha_low, "#d62728"}, std::pair{alpha_high, "#0000cc"}}) {
     const double slope = 1.0 - 1.0 / fbm::power_law::critical_to_precursor_ratio(alpha);
@@ -165,8 +184,9 @@ std::optional<Figure> delay_figure(const std::vector<Point>& points) {
                  fmt::format("FBM, α = {:g}: δ_x = {:.3g} x_c", alpha, slope), color);
   }
   figure.panels.push_back(std::move(panel));
-  figure.caption = "δ_x against x_c (the paper's figure 16), log-log, with x_c ± 1σ and the 68 % posterior interval "
-                   "of δ_x as bars; lines: the FBM power-law relation δ_x = (1 - 1/r(α)) x_c for α = 0 and 5.";
+  figure.caption =
+      "δ_x against x_c (the paper's figure 16), log-log, with x_c ± 1σ and the 68 % posterior interval "
+      "of δ_x as bars; lines: the FBM power-law relation δ_x = (1 - 1/r(α)) x_c for α = 0 and 5.";
   return figure;
 }
 
@@ -178,7 +198,9 @@ std::optional<Figure> energy_ratio_figure(const std::vector<Point>& points) {
     int point_type;
   };
   const Group groups[] = {{"Γ < 1", "#1f77b4", 7}, {"1 ≤ Γ ≤ 5", "#2ca02c", 5}, {"Γ > 5", "#000000", 9}};
-  const auto group_of = [](double gamma) -> std::size_t { return gamma < 1.0 ? 0 : gamma <= gamma_far ? 1 : 2; };
+  const auto group_of = [](double gamma) -> std::size_t {
+    return gamma < 1.0 ? 0 : gamma <= gamma_far ? 1 : 2;
+  };
   std::vector<const Point*> kept;
   for (const auto& p : points)
     if (p.analysed() && p.A_r && p.gamma) kept.push_back(&p);
@@ -213,7 +235,12 @@ std::optional<Figure> energy_ratio_figure(const std::vector<Point>& points) {
     }
     add_group(figure, panel, std::string("points with ") + g.title,
               {"x_c[%]", "A_r[1]", "x_c_low[%]", "x_c_high[%]", "A_r_low[1]", "A_r_high[1]"}, std::move(c),
-              {.title = g.title, .style = Style::xyerrorbars, .extra_columns = {2, 3, 4, 5}, .color = g.color, .point_type = g.point_type, .point_size = 1.5});
+              {.title = g.title,
+               .style = Style::xyerrorbars,
+               .extra_columns = {2, 3, 4, 5},
+               .color = g.color,
+               .point_type = g.point_type,
+               .point_size = 1.5});
   }
   for (const auto& [alpha, color] : {std::pair{alpha_low, "#d62728"}, std::pair{alpha_high, "#0000cc"}}) {
     const double a_r = fbm::power_law::energy_ratio(alpha);
@@ -221,8 +248,9 @@ std::optional<Figure> energy_ratio_figure(const std::vector<Point>& points) {
                  fmt::format("FBM, α = {:g}: A_r = {:.3f}", alpha, a_r), color);
   }
   figure.panels.push_back(std::move(panel));
-  figure.caption = "A_r against x_c (the paper's figure 17) with ±1σ bars, three symbols for Γ < 1, 1–5 and > 5; "
-                   "horizontal lines: the FBM power-law values for α = 0 (A_r = 4/3) and α = 5.";
+  figure.caption =
+      "A_r against x_c (the paper's figure 17) with ±1σ bars, three symbols for Γ < 1, 1–5 and > 5; "
+      "horizontal lines: the FBM power-law values for α = 0 (A_r = 4/3) and α = 5.";
   return figure;
 }
 
@@ -231,8 +259,9 @@ std::optional<Figure> energy_ratio_figure(const std::vector<Point>& points) {
 std::vector<Figure> scan_figures(const fs::path& scan_folder, const std::vector<std::string>& provenance) {
   const fs::path file = scan_folder / "results.csv";
   if (!fs::exists(file)) {
-    throw InputError(scan_folder.string(), "no results.csv in this scan folder yet",
-                     "wait until `rupture scan` has finished a point (it rewrites results.csv after each one)");
+    throw InputError(
+        scan_folder.string(), "no results.csv in this scan folder yet",
+        "wait until `rupture scan` has finished a point (it rewrites results.csv after each one)");
   }
   const auto points = read_points(scan::read_results(file));
   std::vector<Figure> figures;
@@ -242,7 +271,8 @@ std::vector<Figure> scan_figures(const fs::path& scan_folder, const std::vector<
     figures.push_back(std::move(*figure));
   }
   if (figures.empty()) {
-    throw InputError(file.string(), "no point with k_n and b_d to draw", "plot a scan that has finished points");
+    throw InputError(file.string(), "no point with k_n and b_d to draw",
+                     "plot a scan that has finished points");
   }
   return figures;
 }

@@ -12,6 +12,7 @@
 namespace rupture::figures {
 
 // The figures that have something to show; InputError when results.csv has no point to draw at all.
-std::vector<Figure> scan_figures(const std::filesystem::path& scan_folder, const std::vector<std::string>& provenance);
+std::vector<Figure> scan_figures(const std::filesystem::path& scan_folder,
+                                 const std::vector<std::string>& provenance);
 
 }  // namespace rupture::figures

@@ -1,12 +1,12 @@
 #include "figures/snapshots.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <string_view>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -45,8 +45,9 @@ std::vector<T> parse_numbers(std::string_view text, std::string_view name, const
     T value{};
     const auto [next, error] = std::from_chars(p, end, value);
     if (error != std::errc()) {
-      throw InputError(file.string(), fmt::format("DataArray {} holds '{}', not a number", name,
-                                                  std::string_view(p, std::min<std::size_t>(end - p, 20))),
+      throw InputError(file.string(),
+                       fmt::format("DataArray {} holds '{}', not a number", name,
+                                   std::string_view(p, std::min<std::size_t>(end - p, 20))),
                        "regenerate the snapshot with `rupture run`");
     }
     values.push_back(value);
@@ -68,12 +69,14 @@ double quantile_of_magnitude(std::vector<double> values, double q) {
 SnapshotBonds read_snapshot_bonds(const fs::path& vtp) {
   const std::string text = io::read_text_file(vtp);
   const auto points = parse_numbers<double>(array_text(text, "Points", vtp), "Points", vtp);
-  const auto connectivity = parse_numbers<std::uint64_t>(array_text(text, "connectivity", vtp), "connectivity", vtp);
-  const auto relative = parse_numbers<double>(array_text(text, "relative_extension", vtp), "relative_extension", vtp);
+  const auto connectivity =
+      parse_numbers<std::uint64_t>(array_text(text, "connectivity", vtp), "connectivity", vtp);
+  const auto relative =
+      parse_numbers<double>(array_text(text, "relative_extension", vtp), "relative_extension", vtp);
   if (points.size() % 3 != 0 || connectivity.size() != 2 * relative.size()) {
     throw InputError(vtp.string(),
-                     fmt::format("{} point coordinates, {} bond ends and {} extensions do not match", points.size(),
-                                 connectivity.size(), relative.size()),
+                     fmt::format("{} point coordinates, {} bond ends and {} extensions do not match",
+                                 points.size(), connectivity.size(), relative.size()),
                      "regenerate the snapshot with `rupture run`");
   }
   SnapshotBonds bonds;
@@ -81,7 +84,8 @@ SnapshotBonds read_snapshot_bonds(const fs::path& vtp) {
   for (std::size_t b = 0; b < relative.size(); ++b) {
     const auto a = connectivity[2 * b], c = connectivity[2 * b + 1];
     if (a >= n_points || c >= n_points) {
-      throw InputError(vtp.string(), fmt::format("bond {} refers to point {} of {}", b, std::max(a, c), n_points),
+      throw InputError(vtp.string(),
+                       fmt::format("bond {} refers to point {} of {}", b, std::max(a, c), n_points),
                        "regenerate the snapshot with `rupture run`");
     }
     bonds.x_a.push_back(points[3 * a]);
@@ -113,8 +117,10 @@ std::vector<SnapshotFile> list_snapshots(const fs::path& run_folder, const io::C
   for (auto& s : found) {
     const double step = static_cast<double>(s.step);
     const auto hi = std::lower_bound(steps.begin(), steps.end(), step);
-    if (hi == steps.begin()) s.strain = strain.front();
-    else if (hi == steps.end()) s.strain = strain.back();
+    if (hi == steps.begin())
+      s.strain = strain.front();
+    else if (hi == steps.end())
+      s.strain = strain.back();
     else {
       const auto i = static_cast<std::size_t>(hi - steps.begin());
       const double t = (step - steps[i - 1]) / (steps[i] - steps[i - 1]);
@@ -124,7 +130,8 @@ std::vector<SnapshotFile> list_snapshots(const fs::path& run_folder, const io::C
   return found;
 }
 
-std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all, const std::vector<double>& strains) {
+std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all,
+                                            const std::vector<double>& strains) {
   std::vector<SnapshotFile> chosen;
   if (all.empty()) return chosen;
   for (double wanted : strains) {
@@ -148,7 +155,8 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
     provenance.push_back("read: " + snapshot.file.string());
     const SnapshotBonds bonds = read_snapshot_bonds(snapshot.file);
     DataBlock block;
-    block.title = fmt::format("intact bonds at step {}, strain {:.4g} {}", snapshot.step, snapshot.strain, strain_unit);
+    block.title =
+        fmt::format("intact bonds at step {}, strain {:.4g} {}", snapshot.step, snapshot.strain, strain_unit);
     block.header = {"x[mm]", "y[mm]", "dx[mm]", "dy[mm]", "extension[%]"};
     block.columns.resize(5);
     for (std::size_t b = 0; b < bonds.x_a.size(); ++b) {
@@ -185,7 +193,8 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
   }
   // Each panel: the sample's aspect at 1000 px width, plus room for title and labels.
   const double aspect = (y_high - y_low + 2 * pad_y) / std::max(x_high - x_low + 2 * pad_x, 1e-12);
-  figure.height = static_cast<int>(chosen.size()) * std::clamp(static_cast<int>(160 + 760 * aspect), 300, 900);
+  figure.height =
+      static_cast<int>(chosen.size()) * std::clamp(static_cast<int>(160 + 760 * aspect), 300, 900);
   figure.provenance = std::move(provenance);
   figure.caption = fmt::format(
       "Intact bonds at {} strains, coloured by their extension (r - r0)/r0 in % on one scale for all panels "

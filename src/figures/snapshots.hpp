@@ -19,7 +19,8 @@ struct SnapshotBonds {
   std::vector<double> x_a, y_a, x_b, y_b, relative_extension;
 };
 
-// Reads the points, the bond connectivity and `relative_extension` of a snapshot .vtp. InputError if malformed.
+// Reads the points, the bond connectivity and `relative_extension` of a snapshot .vtp. InputError if
+// malformed.
 SnapshotBonds read_snapshot_bonds(const std::filesystem::path& vtp);
 
 // A recorded snapshot: its file, step and strain [%] (interpolated in step from curves.csv).
@@ -33,7 +34,8 @@ struct SnapshotFile {
 std::vector<SnapshotFile> list_snapshots(const std::filesystem::path& run_folder, const io::CsvTable& curves);
 
 // For each wanted strain the nearest snapshot, without repeats, in strain order.
-std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all, const std::vector<double>& strains);
+std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all,
+                                            const std::vector<double>& strains);
 
 // Stacked panels, one per snapshot, bonds coloured by relative extension [%] on one shared scale.
 Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::string& strain_unit,

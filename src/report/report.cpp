@@ -1,10 +1,10 @@
 #include "report/report.hpp"
 
-#include <cmath>
-#include <vector>
-
 #include <fmt/format.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "core/error.hpp"
 #include "figures/figures.hpp"
@@ -23,7 +23,8 @@ std::string base64(std::string_view bytes) {
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
   for (; i + 3 <= bytes.size(); i += 3) {
-    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16 | static_cast<unsigned char>(bytes[i + 1]) << 8 |
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16 |
+                       static_cast<unsigned char>(bytes[i + 1]) << 8 |
                        static_cast<unsigned char>(bytes[i + 2]);
     for (int shift : {18, 12, 6, 0}) out += alphabet[(v >> shift) & 63u];
   }
@@ -43,12 +44,23 @@ std::string escape_html(std::string_view text) {
   out.reserve(text.size());
   for (char ch : text) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += ch;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -56,7 +68,8 @@ std::string escape_html(std::string_view text) {
 
 namespace {
 
-constexpr const char* style_sheet = R"(body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
+constexpr const char* style_sheet =
+    R"(body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
 h1{font-size:1.6em;border-bottom:2px solid #888}h2{font-size:1.25em;margin-top:2em;border-bottom:1px solid #ccc}
 table{border-collapse:collapse;margin:0.5em 0 1em}th,td{border:1px solid #ccc;padding:0.25em 0.6em;text-align:left;vertical-align:top}
 th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums}
@@ -98,7 +111,8 @@ std::vector<std::string> measured_row(const std::string& name, const std::string
 // Nested JSON flattened to "a.b.c" keys with their values as text, in key order.
 void flatten(const json& value, const std::string& prefix, std::vector<std::vector<std::string>>& rows) {
   if (value.is_object() && !value.empty()) {
-    for (const auto& [key, child] : value.items()) flatten(child, prefix.empty() ? key : prefix + "." + key, rows);
+    for (const auto& [key, child] : value.items())
+      flatten(child, prefix.empty() ? key : prefix + "." + key, rows);
     return;
   }
   std::string text = value.is_string() ? value.get<std::string>() : value.dump();
@@ -110,7 +124,8 @@ json read_json(const fs::path& file) {
   try {
     return json::parse(io::read_text_file(file));
   } catch (const json::exception& e) {
-    throw InputError(file.string(), fmt::format("not valid JSON: {}", e.what()), "rewrite it with the rupture command that made it");
+    throw InputError(file.string(), fmt::format("not valid JSON: {}", e.what()),
+                     "rewrite it with the rupture command that made it");
   }
 }
 
@@ -121,7 +136,8 @@ std::string figures_section(const std::vector<figures::Drawn>& drawn, std::size_
     if (png.empty()) continue;
     html += fmt::format(
         "<figure><img alt=\"{0}\" src=\"data:image/png;base64,{1}\">\n<figcaption><strong>{0}</strong>: {2} "
-        "(data and gnuplot script: <code>figures/{0}.dat</code>, <code>figures/{0}.gp</code>)</figcaption></figure>\n",
+        "(data and gnuplot script: <code>figures/{0}.dat</code>, "
+        "<code>figures/{0}.gp</code>)</figcaption></figure>\n",
         escape_html(figure.name), base64(io::read_text_file(png)), escape_html(figure.caption));
     ++count;
   }
@@ -139,21 +155,24 @@ constexpr const char* figure_check = R"(window.addEventListener("load", function
 
 std::string page(const std::string& title, const std::string& body) {
   return fmt::format(
-      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>\n{}</style>\n"
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta "
+      "charset=\"utf-8\">\n<title>{}</title>\n<style>\n{}</style>\n"
       "<script>\n{}</script>\n</head>\n<body>\n{}</body>\n</html>\n",
       escape_html(title), style_sheet, figure_check, body);
 }
 
 std::string provenance(const fs::path& folder, const std::string& command) {
-  return fmt::format("<p>Written by rupture {} (<code>{}</code>) from the folder <code>{}</code>. Every number below is "
-                     "read from the files of that folder; the figures are redrawn from them.</p>\n",
-                     escape_html(version_string), escape_html(command), escape_html(fs::absolute(folder).string()));
+  return fmt::format(
+      "<p>Written by rupture {} (<code>{}</code>) from the folder <code>{}</code>. Every number below is "
+      "read from the files of that folder; the figures are redrawn from them.</p>\n",
+      escape_html(version_string), escape_html(command), escape_html(fs::absolute(folder).string()));
 }
 
 // The one sentence a reader wants first: where the precursor was and how far ahead of failure.
 std::string run_summary(const json& analysis) {
   if (analysis.is_null()) {
-    return "<p class=\"summary\">Not analysed yet: run <code>rupture analyze curves.csv</code> in this folder, then "
+    return "<p class=\"summary\">Not analysed yet: run <code>rupture analyze curves.csv</code> in this "
+           "folder, then "
            "<code>rupture report</code> again.</p>\n";
   }
   std::string text;
@@ -163,18 +182,24 @@ std::string run_summary(const json& analysis) {
   if (x_p.is_object() && x_c.is_object() && delta.is_object()) {
     const std::string unit = escape_html(delta.value("unit", ""));
     const auto ci95 = delta.at("ci95");
-    text = fmt::format("Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, before the force peaks at "
-                       "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}).",
-                       number_text(x_p["value"].get<double>()), number_text(x_c["value"].get<double>()),
-                       number_text(delta["mean"].get<double>()), number_text(delta["sd"].get<double>()),
-                       number_text(ci95.at(0).get<double>()), number_text(ci95.at(1).get<double>()), fmt::arg("u", unit));
+    text = fmt::format(
+        "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, before the force peaks at "
+        "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}).",
+        number_text(x_p["value"].get<double>()), number_text(x_c["value"].get<double>()),
+        number_text(delta["mean"].get<double>()), number_text(delta["sd"].get<double>()),
+        number_text(ci95.at(0).get<double>()), number_text(ci95.at(1).get<double>()), fmt::arg("u", unit));
   } else {
     text = "No precursor found: the analysis did not locate both maxima.";
   }
-  if (analysis.value("accepted", false)) text += " The curve passed the acceptance rules.";
-  else text += " Analysis rejected: " + escape_html(analysis.value("rejection", std::string("no reason given"))) + ".";
+  if (analysis.value("accepted", false))
+    text += " The curve passed the acceptance rules.";
+  else
+    text +=
+        " Analysis rejected: " + escape_html(analysis.value("rejection", std::string("no reason given"))) +
+        ".";
   if (analysis["mechanism"].is_object()) {
-    text += " Breaking mechanism: <strong>" + escape_html(analysis["mechanism"].value("class", "")) + "</strong>.";
+    text += " Breaking mechanism: <strong>" + escape_html(analysis["mechanism"].value("class", "")) +
+            "</strong>.";
   }
   return "<p class=\"summary\">" + text + "</p>\n";
 }
@@ -192,18 +217,22 @@ std::string analysis_section(const json& analysis) {
       measured_row("δ_x (direct)", "x_c − x_p from the two peak fits", analysis["delta_x_direct"]),
       measured_row("Γ", "(x_m − x_c)/δ_x (paper eq. 17)", analysis["Gamma"]),
       measured_row("A_r", "E_max/(x_p ℰ_max)", analysis["A_r"])};
-  std::string html = "<h2>Analysis</h2>\n<p>From <code>analysis.json</code>; uncertainties are one standard deviation.</p>\n";
-  html += table({"quantity", "meaning", "value", "uncertainty", "unit"}, rows, {false, false, true, true, false});
+  std::string html =
+      "<h2>Analysis</h2>\n<p>From <code>analysis.json</code>; uncertainties are one standard "
+      "deviation.</p>\n";
+  html +=
+      table({"quantity", "meaning", "value", "uncertainty", "unit"}, rows, {false, false, true, true, false});
   if (const auto& delta = analysis["delta_x"]; delta.is_object()) {
     const std::string unit = escape_html(delta.value("unit", ""));
     const auto interval = [&](const char* key) {
-      return fmt::format("[{}, {}]", number_text(delta.at(key).at(0).get<double>()), number_text(delta.at(key).at(1).get<double>()));
+      return fmt::format("[{}, {}]", number_text(delta.at(key).at(0).get<double>()),
+                         number_text(delta.at(key).at(1).get<double>()));
     };
     html += "<p>Posterior of δ<sub>x</sub>:</p>\n";
     html += table({"MAP", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
                   {{number_text(delta["map"].get<double>()), number_text(delta["mean"].get<double>()),
-                    number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()), interval("ci68"),
-                    interval("ci95"), unit}},
+                    number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()),
+                    interval("ci68"), interval("ci95"), unit}},
                   {true, true, true, true, true, true, false});
   }
   if (const auto& alpha = analysis["alpha"]; alpha.is_object()) {
@@ -211,8 +240,8 @@ std::string analysis_section(const json& analysis) {
     const auto flag = [](const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "–"; };
     html += "<p>Fiber-bundle comparison (power law p(x) = (1+α) x<sup>α</sup>):</p>\n";
     html += table({"α from δ_x/x_p (eq. 18)", "Γ within the FBM band 0 ≤ α ≤ 5", "A_r within the FBM band"},
-                  {{value.is_object() ? number_text(value["value"].get<double>()) : "–", flag(alpha["Gamma_in_band"]),
-                    flag(alpha["A_r_in_band"])}});
+                  {{value.is_object() ? number_text(value["value"].get<double>()) : "–",
+                    flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
   }
   if (const auto& mechanism = analysis["mechanism"]; mechanism.is_object()) {
     html += "<p>Breaking mechanism: <strong>" + escape_html(mechanism.value("class", "")) + "</strong> — " +
@@ -224,12 +253,15 @@ std::string analysis_section(const json& analysis) {
 std::string run_section(const json& run) {
   if (run.is_null()) return "<h2>Run</h2>\n<p>No <code>run.json</code> in this folder.</p>\n";
   const auto get = [&](const char* key) { return run.contains(key) ? run[key] : json(); };
-  const auto num = [&](const json& v) { return v.is_number() ? number_text(v.get<double>()) : escape_html(v.dump()); };
+  const auto num = [&](const json& v) {
+    return v.is_number() ? number_text(v.get<double>()) : escape_html(v.dump());
+  };
   const auto& balance = run["energy_balance"];
   const auto& plan = run["plan"];
   std::vector<std::vector<std::string>> rows{
       {"status", escape_html(get("status").is_string() ? get("status").get<std::string>() : "unknown"), ""},
-      {"why it stopped", escape_html(get("stop_reason").is_string() ? get("stop_reason").get<std::string>() : "–"), ""},
+      {"why it stopped",
+       escape_html(get("stop_reason").is_string() ? get("stop_reason").get<std::string>() : "–"), ""},
       {"steps", num(get("steps")), "1"},
       {"final strain", num(get("final_strain_percent")), "%"},
       {"bonds broken", num(get("broken_bonds")), "1"},
@@ -237,9 +269,12 @@ std::string run_section(const json& run) {
       {"throughput", num(get("particle_steps_per_s")), "particle-steps/s"},
       {"threads", num(get("threads")), "1"}};
   if (balance.is_object()) {
-    rows.push_back({"energy-balance drift, max |W − Σ E| / W",
-                    balance.contains("max_error_relative_to_work") ? num(balance["max_error_relative_to_work"]) : "–", "1"});
-    rows.push_back({"energy-balance drift, max |W − Σ E|", num(balance.value("max_abs_error_mJ", json())), "mJ"});
+    rows.push_back(
+        {"energy-balance drift, max |W − Σ E| / W",
+         balance.contains("max_error_relative_to_work") ? num(balance["max_error_relative_to_work"]) : "–",
+         "1"});
+    rows.push_back(
+        {"energy-balance drift, max |W − Σ E|", num(balance.value("max_abs_error_mJ", json())), "mJ"});
     rows.push_back({"plate work W", num(balance.value("plate_work_mJ", json())), "mJ"});
   }
   if (plan.is_object()) {
@@ -258,8 +293,9 @@ std::string run_section(const json& run) {
   if (run["config"].is_object()) {
     std::vector<std::vector<std::string>> config_rows;
     flatten(run["config"], "", config_rows);
-    html += "<h2>Configuration (every key resolved; units as in <code>rupture run --help-config</code>)</h2>\n" +
-            table({"key", "value"}, config_rows);
+    html +=
+        "<h2>Configuration (every key resolved; units as in <code>rupture run --help-config</code>)</h2>\n" +
+        table({"key", "value"}, config_rows);
   }
   return html;
 }
@@ -277,15 +313,18 @@ std::string run_report(const fs::path& folder, const std::string& command, std::
 std::string scan_report(const fs::path& folder, const std::string& command, std::size_t& count) {
   const auto drawn = figures::plot(folder, folder / "figures", {});
   const auto results = scan::read_results(folder / "results.csv");
-  std::string body = "<h1>Parameter scan: " + escape_html(fs::absolute(folder).filename().string()) + "</h1>\n";
+  std::string body =
+      "<h1>Parameter scan: " + escape_html(fs::absolute(folder).filename().string()) + "</h1>\n";
   body += provenance(folder, command);
   std::size_t accepted = 0;
   for (std::size_t r = 0; r < results.rows.size(); ++r) {
-    if (results.text(r, "status") == scan::status::ok && results.number(r, "accepted").value_or(0.0) == 1.0) ++accepted;
+    if (results.text(r, "status") == scan::status::ok && results.number(r, "accepted").value_or(0.0) == 1.0)
+      ++accepted;
   }
-  body += fmt::format("<p class=\"summary\">{} points in <code>results.csv</code>, {} separated and accepted by the "
-                      "analysis (figures 16 and 17 show those).</p>\n",
-                      results.rows.size(), accepted);
+  body += fmt::format(
+      "<p class=\"summary\">{} points in <code>results.csv</code>, {} separated and accepted by the "
+      "analysis (figures 16 and 17 show those).</p>\n",
+      results.rows.size(), accepted);
   body += figures_section(drawn, count);
   if (fs::exists(folder / "scan.json")) {
     json scan = read_json(folder / "scan.json");
@@ -306,9 +345,11 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
     for (const auto& field : row) cells.push_back(escape_html(field));
     rows.push_back(std::move(cells));
   }
-  body += "<h2>Results</h2>\n<p>Every point of <code>results.csv</code> (units in brackets; empty: not found or not "
-          "run; _err and _sd are one standard deviation).</p>\n" +
-          table(header, rows, numeric);
+  body +=
+      "<h2>Results</h2>\n<p>Every point of <code>results.csv</code> (units in brackets; empty: not found or "
+      "not "
+      "run; _err and _sd are one standard deviation).</p>\n" +
+      table(header, rows, numeric);
   return page("rupture scan report: " + folder.filename().string(), body);
 }
 
@@ -316,12 +357,13 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
 
 ReportResult write_report(const fs::path& folder, const std::string& command) {
   if (!fs::is_directory(folder)) {
-    throw InputError(folder.string(), "not a folder", "give a run folder (rupture run) or a scan folder (rupture scan)");
+    throw InputError(folder.string(), "not a folder",
+                     "give a run folder (rupture run) or a scan folder (rupture scan)");
   }
   ReportResult result;
   result.html = folder / "report.html";
   const std::string html = figures::is_scan_folder(folder) ? scan_report(folder, command, result.figures)
-                                                            : run_report(folder, command, result.figures);
+                                                           : run_report(folder, command, result.figures);
   io::write_file_atomically(result.html, html);
   return result;
 }

@@ -1,5 +1,8 @@
 // Tests for src/figures and `rupture plot`: pictures exist with the promised size, scripts rerun
 // without a word from gnuplot, the FBM maxima sit at the closed-form strains, bad input is rejected.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,15 +14,12 @@
 #include <string>
 #include <vector>
 
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-
 #include "core/error.hpp"
+#include "fbm/power_law.hpp"
 #include "figures/gnuplot.hpp"
+#include "figures/scan_fixture.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
-#include "figures/scan_fixture.hpp"
-#include "fbm/power_law.hpp"
 #include "support/tool.hpp"
 
 namespace {
@@ -137,7 +137,8 @@ std::size_t rows_of(const std::vector<Block>& all, const std::string& title) {
 TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   TempDir dir;
   const auto run = dir / "run";
-  ASSERT_EQ(run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
+  ASSERT_EQ(
+      run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
   const auto analysed = run_rupture("analyze " + shell_quoted(run / "curves.csv"));
   ASSERT_TRUE(analysed.exit_code == 0 || analysed.exit_code == 4) << analysed.err;  // 4: analysed, rejected
   const auto out = dir / "figs";
@@ -145,7 +146,8 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   for (const std::string name : {"loading", "breaking_rate"}) {
-    for (const std::string ext : {".gp", ".dat", ".png", ".svg"}) EXPECT_TRUE(fs::exists(out / (name + ext))) << name << ext;
+    for (const std::string ext : {".gp", ".dat", ".png", ".svg"})
+      EXPECT_TRUE(fs::exists(out / (name + ext))) << name << ext;
     expect_svg(out / (name + ".svg"));
   }
   // Two stacked panels (curves, delta_x posterior) make the loading figure taller.
@@ -164,7 +166,8 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
 TEST(Figures, RunCurvesAreNormalisedAndBreaksCounted) {
   TempDir dir;
   const auto run = dir / "run";
-  ASSERT_EQ(run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
+  ASSERT_EQ(
+      run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
   const auto r = run_rupture("plot " + shell_quoted(run) + " --format png");  // default folder: run/figures
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(fs::exists(run / "figures" / "loading.svg"));
@@ -174,7 +177,8 @@ TEST(Figures, RunCurvesAreNormalisedAndBreaksCounted) {
   // Every curve is divided by its own maximum.
   const auto curves = first_block(run / "figures" / "loading.dat");
   ASSERT_EQ(curves.size(), 4u);
-  for (std::size_t c = 1; c < 4; ++c) EXPECT_DOUBLE_EQ(*std::max_element(curves[c].begin(), curves[c].end()), 1.0) << c;
+  for (std::size_t c = 1; c < 4; ++c)
+    EXPECT_DOUBLE_EQ(*std::max_element(curves[c].begin(), curves[c].end()), 1.0) << c;
   // The histogram's rate times the bin width counts every broken bond once.
   const auto rate = first_block(run / "figures" / "breaking_rate.dat");
   ASSERT_EQ(rate.size(), 2u);
@@ -214,7 +218,8 @@ TEST(Figures, SnapshotsDrawIntactBondsAtChosenStrains) {
                 .exit_code,
             0);
   const auto out = dir / "figs";
-  const auto r = run_rupture("plot " + shell_quoted(run) + " --out " + shell_quoted(out) + " --snapshots-at 0,0.15");
+  const auto r =
+      run_rupture("plot " + shell_quoted(run) + " --out " + shell_quoted(out) + " --snapshots-at 0,0.15");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto size = png_size(out / "snapshots.png");
   EXPECT_EQ(size.width, 1000u);
@@ -246,7 +251,8 @@ TEST(Figures, SnapshotsDrawIntactBondsAtChosenStrains) {
 TEST(Figures, SnapshotsAskedForInARunWithoutThemIsBadInput) {
   TempDir dir;
   const auto run = dir / "run";
-  ASSERT_EQ(run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
+  ASSERT_EQ(
+      run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
   const auto r = run_rupture("plot " + shell_quoted(run) + " --snapshots-at 0.1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("output.snapshot_interval"));
@@ -280,7 +286,8 @@ TEST(Figures, ScanFiguresFromResultsTable) {
   EXPECT_THAT(slurp(out / "mechanism_map.gp"), HasSubstr("set logscale x 10"));
 
   const auto delay = blocks(out / "delay_vs_critical.dat");
-  const Block* points = find_block(delay, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval");
+  const Block* points =
+      find_block(delay, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval");
   ASSERT_NE(points, nullptr);
   EXPECT_EQ(points->rows.size(), std::size_t(ScanFixture::positive_delay));
   EXPECT_THAT(slurp(out / "delay_vs_critical.gp"), HasSubstr("1 with δ_x ≤ 0 cannot be shown on log axes"));
@@ -363,10 +370,12 @@ TEST(Figures, DataFileSeparatesBlocksAndMarksMissingValues) {
   figures::Figure figure;
   figure.name = "t";
   figure.provenance = {"rupture test"};
-  figure.blocks.push_back({"first", {"x[1]", "y[1]"}, {{0.0, 1.0}, {2.0, std::numeric_limits<double>::quiet_NaN()}}});
+  figure.blocks.push_back(
+      {"first", {"x[1]", "y[1]"}, {{0.0, 1.0}, {2.0, std::numeric_limits<double>::quiet_NaN()}}});
   figure.blocks.push_back({"second", {"x[1]", "y[1]"}, {{5.0}, {0.25}}});
   EXPECT_EQ(figures::data_text(figure),
-            "# rupture test\n# index 0: first\n# x[1] y[1]\n0 2\n1 ?\n\n\n# index 1: second\n# x[1] y[1]\n5 0.25\n");
+            "# rupture test\n# index 0: first\n# x[1] y[1]\n0 2\n1 ?\n\n\n# index 1: second\n# x[1] y[1]\n5 "
+            "0.25\n");
   EXPECT_THROW(figures::parse_format("jpeg"), InputError);
   const std::string both = figures::script_text(figure, figures::Format::both);
   EXPECT_THAT(both, HasSubstr("formats = \"png svg\""));

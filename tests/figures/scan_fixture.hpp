@@ -4,9 +4,8 @@
 #pragma once
 
 #include <filesystem>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "io/atomic_file.hpp"
 #include "scan/results.hpp"
@@ -17,11 +16,11 @@ namespace rupture::testing {
 struct ScanFixture {
   static constexpr int points = 8;
   static constexpr int brittle = 2, hyper_elastic = 1, semi_ductile = 1, ductile = 2;
-  static constexpr int without_class = 2;       // one not separated, one failed
-  static constexpr int gamma_above_5 = 2;       // stars in figure 15, the Γ > 5 group of figure 17
+  static constexpr int without_class = 2;  // one not separated, one failed
+  static constexpr int gamma_above_5 = 2;  // stars in figure 15, the Γ > 5 group of figure 17
   static constexpr int gamma_below_1 = 2, gamma_1_to_5 = 2;
-  static constexpr int positive_delay = 5;      // analysed with δ_x > 0: drawn in figure 16
-  static constexpr int negative_delay = 1;      // analysed with δ_x < 0: counted in figure 16's title
+  static constexpr int positive_delay = 5;  // analysed with δ_x > 0: drawn in figure 16
+  static constexpr int negative_delay = 1;  // analysed with δ_x < 0: counted in figure 16's title
 };
 
 // Writes FOLDER/results.csv (and a scan.json) for a 2 x 4 grid of (k_n, b_d).
@@ -50,18 +49,27 @@ inline void write_scan_fixture(const std::filesystem::path& folder) {
   for (const auto& r : table) {
     json row = {{"point", point++}, {"k_n", r.k_n}, {"b_d", r.b_d}, {"status", r.status}};
     if (std::string(r.status) == "ok") {
-      row.update({{"class", r.mechanism}, {"accepted", 1}, {"x_c", r.x_c}, {"x_c_err", 0.02 * r.x_c},
-                  {"x_p", r.x_c - r.delta_x}, {"delta_x", r.delta_x}, {"delta_x_sd", 0.1 * std::abs(r.delta_x)},
+      row.update({{"class", r.mechanism},
+                  {"accepted", 1},
+                  {"x_c", r.x_c},
+                  {"x_c_err", 0.02 * r.x_c},
+                  {"x_p", r.x_c - r.delta_x},
+                  {"delta_x", r.delta_x},
+                  {"delta_x_sd", 0.1 * std::abs(r.delta_x)},
                   {"delta_x_lo68", r.delta_x - 0.1 * std::abs(r.delta_x)},
-                  {"delta_x_hi68", r.delta_x + 0.1 * std::abs(r.delta_x)}, {"Gamma", r.gamma}, {"A_r", r.a_r},
+                  {"delta_x_hi68", r.delta_x + 0.1 * std::abs(r.delta_x)},
+                  {"Gamma", r.gamma},
+                  {"A_r", r.a_r},
                   {"A_r_err", 0.05}});
     } else {
-      row["why"] = std::string(r.status) == "error" ? "energy balance broke down, see run.json" : "still whole at max_strain";
+      row["why"] = std::string(r.status) == "error" ? "energy balance broke down, see run.json"
+                                                    : "still whole at max_strain";
     }
     rows.push_back(std::move(row));
   }
   io::write_file_atomically(folder / "results.csv", scan::format_results(rows, {"rupture test fixture"}));
-  io::write_json_atomically(folder / "scan.json", json{{"tool", "rupture scan"}, {"grid", {{"k_n", {1e2, 1e4}}}}});
+  io::write_json_atomically(folder / "scan.json",
+                            json{{"tool", "rupture scan"}, {"grid", {{"k_n", {1e2, 1e4}}}}});
 }
 
 }  // namespace rupture::testing

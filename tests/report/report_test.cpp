@@ -2,26 +2,27 @@
 // it embeds (every picture a data: URI holding exactly the PNG drawn beside it), carries the analysis
 // numbers and the config, and renders in headless Chromium with every figure decoded and no console
 // message.
+#include "report/report.hpp"
+
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest-spi.h>
+#include <gtest/gtest.h>
+#include <zlib.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-#include <gmock/gmock.h>
-#include <gtest/gtest-spi.h>
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <zlib.h>
-
 #include "figures/scan_fixture.hpp"
 #include "io/atomic_file.hpp"
-#include "report/report.hpp"
 #include "support/tool.hpp"
 
 namespace {
@@ -50,7 +51,8 @@ struct PageFacts {
 // attribute values are double-quoted, '&' only starts an entity, <script>/<style> hold raw text.
 // Any violation is a test failure naming the offset.
 PageFacts check_well_formed(const std::string& html) {
-  static const std::set<std::string> void_elements{"meta", "img", "br", "hr", "link", "input", "col", "wbr", "source"};
+  static const std::set<std::string> void_elements{"meta",  "img", "br",  "hr",    "link",
+                                                   "input", "col", "wbr", "source"};
   PageFacts facts;
   std::vector<std::string> open;
   std::size_t i = 0;
@@ -69,7 +71,8 @@ PageFacts check_well_formed(const std::string& html) {
       const auto letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
       const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
       const bool named = !entity.empty() && std::all_of(entity.begin(), entity.end(), letter);
-      const bool numeric = entity.size() > 1 && entity[0] == '#' && std::all_of(entity.begin() + 1, entity.end(), digit);
+      const bool numeric =
+          entity.size() > 1 && entity[0] == '#' && std::all_of(entity.begin() + 1, entity.end(), digit);
       if (!named && !numeric) return fail("bare '&'"), facts;
       if (cell) *cell += html.substr(i, end - i + 1);
       i = end + 1;
@@ -90,7 +93,8 @@ PageFacts check_well_formed(const std::string& html) {
     if (name.empty()) return fail("'<' that starts no tag"), facts;
     if (closing) {
       if (html[j] != '>') return fail("malformed closing tag"), facts;
-      if (open.empty() || open.back() != name) return fail("</" + name + "> closes <" + (open.empty() ? "" : open.back()) + ">"), facts;
+      if (open.empty() || open.back() != name)
+        return fail("</" + name + "> closes <" + (open.empty() ? "" : open.back()) + ">"), facts;
       open.pop_back();
       if (name == "td" || name == "th") cell = nullptr;
       i = j + 1;
@@ -103,7 +107,8 @@ PageFacts check_well_formed(const std::string& html) {
       const std::size_t a = j;
       while (std::isalnum(static_cast<unsigned char>(html[j])) || html[j] == '-') ++j;
       const std::string attribute = html.substr(a, j - a);
-      if (attribute.empty() || html[j] != '=' || html[j + 1] != '"') return fail("attribute without a quoted value"), facts;
+      if (attribute.empty() || html[j] != '=' || html[j + 1] != '"')
+        return fail("attribute without a quoted value"), facts;
       const auto close = html.find('"', j + 2);
       const std::string value = html.substr(j + 2, close - j - 2);
       if (value.find('<') != std::string::npos) return fail("'<' inside an attribute value"), facts;
@@ -203,19 +208,25 @@ TEST(Report, Base64AndEscapingFollowTheStandards) {
   EXPECT_EQ(report::base64("fo"), "Zm8=");
   EXPECT_EQ(report::base64("foo"), "Zm9v");
   EXPECT_EQ(report::base64("foobar"), "Zm9vYmFy");
-  EXPECT_EQ(decode_base64(report::base64(std::string("\x00\xff\x10 png", 8))), std::string("\x00\xff\x10 png", 8));
+  EXPECT_EQ(decode_base64(report::base64(std::string("\x00\xff\x10 png", 8))),
+            std::string("\x00\xff\x10 png", 8));
   EXPECT_EQ(report::escape_html(R"(<a href="x">&'</a>)"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
 }
 
 // The page checker itself: each kind of fault it exists for is reported.
 TEST(Report, HtmlCheckerCatchesBrokenPages) {
-  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><p></div></body></html>"), "</div> closes <p>");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><p></div></body></html>"),
+                          "</div> closes <p>");
   EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body>a & b</body></html>"), "bare '&'");
-  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><img src=x></body></html>"), "quoted value");
-  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><p>open</body></html>"), "closes <p>");
-  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><style>b{background:url(x.png)}</style></body></html>"),
-                          "mentions url(");
-  const auto facts = check_well_formed("<!DOCTYPE html>\n<html><body><a href=\"figures/loading.png\">x</a></body></html>");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><img src=x></body></html>"),
+                          "quoted value");
+  EXPECT_NONFATAL_FAILURE(check_well_formed("<!DOCTYPE html>\n<html><body><p>open</body></html>"),
+                          "closes <p>");
+  EXPECT_NONFATAL_FAILURE(
+      check_well_formed("<!DOCTYPE html>\n<html><body><style>b{background:url(x.png)}</style></body></html>"),
+      "mentions url(");
+  const auto facts =
+      check_well_formed("<!DOCTYPE html>\n<html><body><a href=\"figures/loading.png\">x</a></body></html>");
   EXPECT_EQ(facts.references, std::vector<std::string>{"figures/loading.png"});
 }
 
@@ -254,8 +265,9 @@ TEST(Report, ScanReportTablesEveryPoint) {
   EXPECT_THAT(r.out, HasSubstr("(3 figures embedded)"));
   const auto facts = check_well_formed(slurp(scan / "report.html"));
   expect_self_contained(facts, scan / "figures");
-  EXPECT_THAT(facts.body_text, HasSubstr(fmt::format("{} points in results.csv, {} separated and accepted", ScanFixture::points,
-                                                     ScanFixture::points - ScanFixture::without_class)));
+  EXPECT_THAT(facts.body_text,
+              HasSubstr(fmt::format("{} points in results.csv, {} separated and accepted",
+                                    ScanFixture::points, ScanFixture::points - ScanFixture::without_class)));
   EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "ductile"), ScanFixture::ductile);
   EXPECT_TRUE(has_cell(facts, "still whole at max_strain"));
   EXPECT_TRUE(has_cell(facts, "k_n[N/mm]"));
@@ -320,18 +332,26 @@ Image decode_png(const std::string& bytes) {
     const std::uint8_t* in = &raw[y * (stride + 1)];
     const int filter = in[0];
     for (std::size_t x = 0; x < stride; ++x) {
-      const int a = x >= channels ? row[x - channels] : 0, b = previous[x], c = x >= channels ? previous[x - channels] : 0;
+      const int a = x >= channels ? row[x - channels] : 0, b = previous[x],
+                c = x >= channels ? previous[x - channels] : 0;
       int predictor = 0;
       switch (filter) {
-        case 1: predictor = a; break;
-        case 2: predictor = b; break;
-        case 3: predictor = (a + b) / 2; break;
+        case 1:
+          predictor = a;
+          break;
+        case 2:
+          predictor = b;
+          break;
+        case 3:
+          predictor = (a + b) / 2;
+          break;
         case 4: {
           const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
           predictor = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
           break;
         }
-        default: break;
+        default:
+          break;
       }
       row[x] = static_cast<std::uint8_t>(in[1 + x] + predictor);
     }
@@ -355,7 +375,8 @@ BrowserRun chromium(const fs::path& page, const fs::path& work, const std::strin
       "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync --user-data-dir={} "
       "--enable-logging=stderr --v=0 --window-size=1200,2000 {} 'file://{}' >{} 2>{}",
-      shell_quoted(work / "profile"), mode, fs::absolute(page).string(), shell_quoted(work / "stdout"), shell_quoted(work / "stderr"));
+      shell_quoted(work / "profile"), mode, fs::absolute(page).string(), shell_quoted(work / "stdout"),
+      shell_quoted(work / "stderr"));
   BrowserRun run;
   const int status = std::system(command.c_str());
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -371,7 +392,8 @@ std::vector<std::string> console_lines(const std::string& log) {
   while (at < log.size()) {
     const auto end = std::min(log.find('\n', at), log.size());
     const std::string line = log.substr(at, end - at);
-    if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos) lines.push_back(line);
+    if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos)
+      lines.push_back(line);
     at = end + 1;
   }
   return lines;
