@@ -294,7 +294,7 @@ void replay(analysis::Monitor& monitor, const std::filesystem::path& curves_file
   for (std::size_t r = 0; r < rows; ++r) (void)monitor.add_point(strain[r], force[r], energy[r]);
 }
 
-// What a resume starts from: the checkpoint, its file, and what is recorded in run.json.
+// What a resume starts from: the checkpoint with its file and warnings, and the resuming command.
 struct ResumePoint {
   const LoadedCheckpoint& loaded;
   std::string command;  // the resuming command line
@@ -325,7 +325,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     try {
       const auto before = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
       if (before.contains("resumes") && before["resumes"].is_array()) resumes = before["resumes"];
-    } catch (const std::exception&) {
+    } catch (const std::exception&) {  // an unreadable run.json loses only that list
     }
     resumes.push_back({{"command", resume->command},
                        {"checkpoint", resume->loaded.file.string()},
@@ -516,8 +516,11 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
       });
     }
     if (stable && signal == 0 && loop.last_recorded != system.steps_done()) stable = record();
-  } catch (const RunError& e) {
+  } catch (const std::exception& e) {
     // A write failed (a full disk): the checkpoints written so far are intact.
+    if (dynamic_cast<const RunError*>(&e) == nullptr &&
+        dynamic_cast<const std::filesystem::filesystem_error*>(&e) == nullptr)
+      throw;
     const std::string next =
         last_checkpoint.empty()
             ? "no checkpoint was written yet: start the run again once there is space"
