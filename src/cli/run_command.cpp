@@ -89,7 +89,8 @@ void add_run_commands(CLI::App& app, int& exit_code) {
       return;
     }
     const auto& options = *run_options;
-    if (!options.resume.empty() && (!options.config.empty() || !options.overrides.empty() || !options.output.empty()))
+    if (!options.resume.empty() &&
+        (!options.config.empty() || !options.overrides.empty() || !options.output.empty()))
       throw InputError("rupture run --resume", "takes no config, --set or --output",
                        "a resumed run keeps the config and folder it began with: run `rupture run --resume " +
                            options.resume + "` alone");

@@ -106,7 +106,8 @@ class Reader {
     std::uint64_t n = 0;
     std::memcpy(&n, take(field, sizeof n), sizeof n);
     if (n > (data_.size() - at_) / element_size)
-      fail(field, fmt::format("claims {} entries but only {} bytes are left (truncated?)", n, data_.size() - at_));
+      fail(field,
+           fmt::format("claims {} entries but only {} bytes are left (truncated?)", n, data_.size() - at_));
     return n;
   }
   const char* take(const char* field, std::size_t size) {
@@ -160,7 +161,8 @@ void visit_fields(Io& io, C& c) {
   io("neighbour_rebuilds", e.neighbour_rebuilds);
   io("forces_stale", e.forces_stale);
   auto& t = e.stage_times;
-  for (auto* seconds : {&t.neighbours, &t.integrate, &t.forces, &t.plates, &t.breaks}) io("stage_times", *seconds);
+  for (auto* seconds : {&t.neighbours, &t.integrate, &t.forces, &t.plates, &t.breaks})
+    io("stage_times", *seconds);
   io("sample_of_storage", e.sample_of_storage);
   io("x", e.x);
   io("y", e.y);
@@ -254,8 +256,8 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& source) {
   std::memcpy(&version, bytes.data() + sizeof magic, sizeof version);
   std::memcpy(&payload_size, bytes.data() + sizeof magic + 4, sizeof payload_size);
   if (version != checkpoint_format_version)
-    fail("version",
-         fmt::format("format version {} is not the {} this rupture reads", version, checkpoint_format_version));
+    fail("version", fmt::format("format version {} is not the {} this rupture reads", version,
+                                checkpoint_format_version));
   if (payload_size != bytes.size() - header_size - checksum_size)
     fail("payload_size", fmt::format("says {} bytes but the file holds {} (truncated or appended to?)",
                                      payload_size, bytes.size() - header_size - checksum_size));
@@ -263,8 +265,8 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& source) {
   Fnv1a h;
   h.add(bytes.data(), bytes.size() - checksum_size);
   if (h.hash != stored)
-    fail("checksum", fmt::format("is {:016x} but the content hashes to {:016x} (the file is corrupt)", stored,
-                                 h.hash));
+    fail("checksum",
+         fmt::format("is {:016x} but the content hashes to {:016x} (the file is corrupt)", stored, h.hash));
   Checkpoint checkpoint;
   Reader reader(bytes.substr(header_size, payload_size), source);
   visit_fields(reader, checkpoint);

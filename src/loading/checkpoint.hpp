@@ -23,12 +23,12 @@ inline constexpr std::uint32_t checkpoint_format_version = 1;
 // The run loop's own state between two steps (besides the engine's). The live monitor is not
 // stored: it only ever consumed the curves.csv rows, so a resume replays them.
 struct LoopState {
-  std::uint64_t curves_bytes = 0;   // bytes of curves.csv written and synced at this step
-  std::uint64_t curves_rows = 0;    // data rows among them
-  std::uint64_t breaks_bytes = 0;   // bytes of breaks.csv
-  std::uint64_t last_recorded = 0;  // step of the last curves.csv row
-  double max_work = 0.0;            // mJ: largest |W| recorded so far
-  double max_energy_error = 0.0;    // mJ
+  std::uint64_t curves_bytes = 0;          // bytes of curves.csv written and synced at this step
+  std::uint64_t curves_rows = 0;           // data rows among them
+  std::uint64_t breaks_bytes = 0;          // bytes of breaks.csv
+  std::uint64_t last_recorded = 0;         // step of the last curves.csv row
+  double max_work = 0.0;                   // mJ: largest |W| recorded so far
+  double max_energy_error = 0.0;           // mJ
   double max_relative_energy_error = 0.0;  // 1
   bool separated = false;                  // a separation rule has fired
   double separation_strain = 0.0;          // % where it fired
@@ -39,10 +39,10 @@ struct LoopState {
 };
 
 struct Checkpoint {
-  std::string version;       // rupture version that wrote it
-  std::string command;       // the command that started the run
-  std::string config_file;   // the config it read (relative sample paths resolve against it)
-  std::string config_json;   // the resolved config (loading::to_json): a resume rebuilds the run from it
+  std::string version;      // rupture version that wrote it
+  std::string command;      // the command that started the run
+  std::string config_file;  // the config it read (relative sample paths resolve against it)
+  std::string config_json;  // the resolved config (loading::to_json): a resume rebuilds the run from it
   std::uint64_t sample_fingerprint = 0;  // of the sample the run started from (sample_fingerprint())
   LoopState loop;
   dem::EngineState engine;

@@ -185,19 +185,24 @@ const std::vector<Key>& schema() {
         number_key("stop", "max_steps", "steps", "stop after this many steps", &RunConfig::max_steps));
     k.push_back(number_key("stop", "separation_check_interval", "steps", "steps between connectivity checks",
                            &RunConfig::separation_check_interval));
-    k.push_back(number_key("stop", "load_free_fraction", "1",
-                           "also separated when the mean top-plate force stays below this fraction of its peak "
-                           "(0: connectivity only)",
-                           &RunConfig::load_free_fraction));
+    k.push_back(
+        number_key("stop", "load_free_fraction", "1",
+                   "also separated when the mean top-plate force stays below this fraction of its peak "
+                   "(0: connectivity only)",
+                   &RunConfig::load_free_fraction));
     k.push_back(number_key("stop", "load_free_strain", "%", "over this much strain (the load-free rule)",
                            &RunConfig::load_free_strain));
-    k.push_back(number_key("monitor", "enabled", "",
-                           "run the live precursor monitor on every curves.csv row; its warning goes to run.json",
-                           &RunConfig::monitor));
-    k.push_back(number_key("monitor", "window", "rows", "rows per causal cubic fit", &RunConfig::monitor_window));
-    k.push_back(number_key("monitor", "drop", "1", "fraction by which the energy rate must fall below its maximum",
+    k.push_back(
+        number_key("monitor", "enabled", "",
+                   "run the live precursor monitor on every curves.csv row; its warning goes to run.json",
+                   &RunConfig::monitor));
+    k.push_back(
+        number_key("monitor", "window", "rows", "rows per causal cubic fit", &RunConfig::monitor_window));
+    k.push_back(number_key("monitor", "drop", "1",
+                           "fraction by which the energy rate must fall below its maximum",
                            &RunConfig::monitor_drop));
-    k.push_back(number_key("monitor", "confirm", "rows", "consecutive rows below that level that confirm the maximum",
+    k.push_back(number_key("monitor", "confirm", "rows",
+                           "consecutive rows below that level that confirm the maximum",
                            &RunConfig::monitor_confirm));
     k.push_back(number_key("output", "folder", "", "output folder (relative to the working directory)",
                            &RunConfig::output_folder));
@@ -284,14 +289,14 @@ void validate(const RunConfig& c, const std::string& file) {
   check(c.max_steps > 0, at("stop.max_steps"), "must be > 0", "use e.g. 1e7");
   check(c.separation_check_interval > 0, at("stop.separation_check_interval"), "must be > 0 (steps)",
         "use e.g. 1000");
-  check(c.load_free_fraction >= 0 && c.load_free_fraction < 1, at("stop.load_free_fraction"), "must be in [0, 1)",
-        "use e.g. 0.1, or 0 to rely on connectivity alone");
+  check(c.load_free_fraction >= 0 && c.load_free_fraction < 1, at("stop.load_free_fraction"),
+        "must be in [0, 1)", "use e.g. 0.1, or 0 to rely on connectivity alone");
   check(c.load_free_strain > 0, at("stop.load_free_strain"), "must be > 0 (%)", "use e.g. 0.2");
-  check(c.monitor_window >= 7 && c.monitor_window <= 100000, at("monitor.window"), "must be between 7 and 100000 (rows)",
-        "use e.g. 41");
+  check(c.monitor_window >= 7 && c.monitor_window <= 100000, at("monitor.window"),
+        "must be between 7 and 100000 (rows)", "use e.g. 41");
   check(c.monitor_drop > 0 && c.monitor_drop < 1, at("monitor.drop"), "must be in (0, 1)", "use e.g. 0.03");
-  check(c.monitor_confirm >= 1 && c.monitor_confirm <= 100000, at("monitor.confirm"), "must be between 1 and 100000 (rows)",
-        "use e.g. 10");
+  check(c.monitor_confirm >= 1 && c.monitor_confirm <= 100000, at("monitor.confirm"),
+        "must be between 1 and 100000 (rows)", "use e.g. 10");
   check(c.output_interval > 0, at("output.interval"), "must be > 0 (steps)", "use e.g. 1000");
   check(c.snapshot_interval >= 0, at("output.snapshot_interval"), "must be >= 0 (steps)",
         "use 0 for no snapshots");
@@ -299,8 +304,8 @@ void validate(const RunConfig& c, const std::string& file) {
         "use e.g. 100000, or 0 to checkpoint by wall time only");
   check(c.checkpoint_minutes >= 0 && std::isfinite(c.checkpoint_minutes), at("checkpoint.minutes"),
         "must be >= 0 (minutes)", "use e.g. 30, or 0 to checkpoint by steps only");
-  check(c.checkpoint_keep >= 1 && c.checkpoint_keep <= 100, at("checkpoint.keep"), "must be between 1 and 100",
-        "use 2 (a damaged newest checkpoint then falls back to the one before)");
+  check(c.checkpoint_keep >= 1 && c.checkpoint_keep <= 100, at("checkpoint.keep"),
+        "must be between 1 and 100", "use 2 (a damaged newest checkpoint then falls back to the one before)");
   check(c.threads >= 1 && c.threads <= 1024, at("run.threads"), "must be between 1 and 1024", "use e.g. 2");
   check(c.lattice_radius > 0, at("sample.lattice_radius"), "must be > 0 (mm)", "use e.g. 0.5");
   for (auto n : c.lattice_cells)
@@ -338,17 +343,23 @@ RunConfig from_table(const toml::table& table, const std::string& source) {
 // keys as a file; null (density: the sample's own) leaves the key out.
 toml::table table_from_json(const nlohmann::json& resolved, const std::string& source) {
   toml::table table;
-  if (!resolved.is_object()) throw InputError(source, "the stored configuration is not a JSON object", "start the run again");
+  if (!resolved.is_object())
+    throw InputError(source, "the stored configuration is not a JSON object", "start the run again");
   for (const auto& [section, keys] : resolved.items()) {
     if (!keys.is_object())
-      throw InputError(source + ": " + section, "is not a table in the stored configuration", "start the run again");
+      throw InputError(source + ": " + section, "is not a table in the stored configuration",
+                       "start the run again");
     toml::table sub;
     for (const auto& [name, v] : keys.items()) {
       if (v.is_null()) continue;
-      if (v.is_boolean()) sub.insert(name, v.get<bool>());
-      else if (v.is_number_integer()) sub.insert(name, v.get<std::int64_t>());
-      else if (v.is_number()) sub.insert(name, v.get<double>());
-      else if (v.is_string()) sub.insert(name, v.get<std::string>());
+      if (v.is_boolean())
+        sub.insert(name, v.get<bool>());
+      else if (v.is_number_integer())
+        sub.insert(name, v.get<std::int64_t>());
+      else if (v.is_number())
+        sub.insert(name, v.get<double>());
+      else if (v.is_string())
+        sub.insert(name, v.get<std::string>());
       else if (v.is_array()) {
         toml::array array;
         for (const auto& e : v) {
@@ -359,7 +370,8 @@ toml::table table_from_json(const nlohmann::json& resolved, const std::string& s
         }
         sub.insert(name, std::move(array));
       } else {
-        throw InputError(source + ": " + section + "." + name, "holds a value of no config type", "start the run again");
+        throw InputError(source + ": " + section + "." + name, "holds a value of no config type",
+                         "start the run again");
       }
     }
     table.insert(section, std::move(sub));

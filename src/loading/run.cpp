@@ -2,22 +2,22 @@
 
 #include <fmt/format.h>
 #include <omp.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <unistd.h>
 #include <memory>
 
+#include "analysis/monitor.hpp"
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "core/units.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/vtk.hpp"
-#include "analysis/monitor.hpp"
 #include "loading/checkpoint.hpp"
 #include "loading/interrupt.hpp"
 #include "loading/ramp.hpp"
@@ -51,16 +51,19 @@ class CsvStream {
     flush();
   }
   // The file of an earlier run, cut back to `bytes` (a resume).
-  CsvStream(const std::filesystem::path& path, std::uint64_t bytes) : path_(path), file_(nullptr, &std::fclose) {
+  CsvStream(const std::filesystem::path& path, std::uint64_t bytes)
+      : path_(path), file_(nullptr, &std::fclose) {
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
     if (ec || size < bytes)
-      throw InputError(path.string(),
-                       ec ? "cannot be read (" + ec.message() + ")"
-                          : fmt::format("holds {} bytes, fewer than the {} its checkpoint recorded", size, bytes),
-                       "the run folder was changed after the checkpoint; start the run again");
+      throw InputError(
+          path.string(),
+          ec ? "cannot be read (" + ec.message() + ")"
+             : fmt::format("holds {} bytes, fewer than the {} its checkpoint recorded", size, bytes),
+          "the run folder was changed after the checkpoint; start the run again");
     std::filesystem::resize_file(path, bytes, ec);
-    if (ec) throw RunError(fmt::format("{}: cannot cut back to {} bytes ({})", path.string(), bytes, ec.message()));
+    if (ec)
+      throw RunError(fmt::format("{}: cannot cut back to {} bytes ({})", path.string(), bytes, ec.message()));
     file_.reset(std::fopen(path.c_str(), "ab"));
     if (!file_) fail();
     bytes_ = bytes;
@@ -82,7 +85,8 @@ class CsvStream {
     bytes_ += text.size();
   }
   [[noreturn]] void fail() const {
-    throw RunError(fmt::format("{}: write failed ({}); is the disk full?", path_.string(), std::strerror(errno)));
+    throw RunError(
+        fmt::format("{}: write failed ({}); is the disk full?", path_.string(), std::strerror(errno)));
   }
   std::filesystem::path path_;
   std::unique_ptr<std::FILE, decltype(&std::fclose)> file_;
@@ -256,7 +260,8 @@ void prepare_folder(const std::filesystem::path& folder, const RunConfig& config
   const std::string fix = "choose a writable folder with -o/--output or output.folder";
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec) throw InputError(folder.string(), fmt::format("cannot create the output folder ({})", ec.message()), fix);
+  if (ec)
+    throw InputError(folder.string(), fmt::format("cannot create the output folder ({})", ec.message()), fix);
   if (!list_checkpoints(folder).empty())
     throw InputError(folder.string(), "holds the checkpoints of an unfinished run",
                      fmt::format("continue it with `rupture run --resume {}`, or remove {} to start over",
@@ -269,8 +274,8 @@ void prepare_folder(const std::filesystem::path& folder, const RunConfig& config
   if (!ec && double(space.available) < needed)
     throw InputError(folder.string(),
                      fmt::format("has {:.3g} MB free, but {} checkpoints of {:.3g} MB need {:.3g} MB",
-                                 double(space.available) / 1e6, config.checkpoint_keep + 1, checkpoint_bytes / 1e6,
-                                 needed / 1e6),
+                                 double(space.available) / 1e6, config.checkpoint_keep + 1,
+                                 checkpoint_bytes / 1e6, needed / 1e6),
                      "free space, choose another output folder, or lower checkpoint.keep");
 }
 
@@ -381,9 +386,11 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     loop.last_recorded = system.steps_done();
     if (config.monitor) {
       if (const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic))
-        fmt::print("monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the force "
-                   "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
-                   warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
+        fmt::print(
+            "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the "
+            "force "
+            "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
+            warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
     }
     loop.max_work = std::max(loop.max_work, std::abs(w));
     const double error = std::abs(w - total);
@@ -524,8 +531,9 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     const std::string next =
         last_checkpoint.empty()
             ? "no checkpoint was written yet: start the run again once there is space"
-            : fmt::format("the last checkpoint {} is intact: make room, then continue with `rupture run --resume {}`",
-                          last_checkpoint.string(), folder.string());
+            : fmt::format(
+                  "the last checkpoint {} is intact: make room, then continue with `rupture run --resume {}`",
+                  last_checkpoint.string(), folder.string());
     const std::string message = fmt::format("{}; {}", e.what(), next);
     report["status"] = "failed";
     report["stop_reason"] = "write_failed";
@@ -550,19 +558,21 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     // The automatic dt when the given one is above the limit, else half the given one.
     const double suggested = too_large ? config.dt_safety * plan.critical_dt : 0.5 * plan.dt;
     const std::string cause =
-        too_large ? fmt::format("dt = {:.3g} s is too large for k_n = {:g} N/mm and the stiffest, lightest particle "
-                                "(springs summing to {:.3g} N/mm on {:.3g} g: critical dt {:.3g} s)",
-                                plan.dt, config.bond_stiffness, plan.stiffest_spring_sum,
-                                units::mass_to_grams(plan.stiffest_mass), plan.critical_dt)
-                  : fmt::format("the ramp is too abrupt for b_d = {:g} (loading.ramp_steps = {} to {:g} mm/s), or "
-                                "contacts {:g} times as stiff as the bonds outrun dt = {:.3g} s",
-                                config.break_distance, config.ramp_steps, config.speed,
-                                config.contact_stiffness_factor, plan.dt);
+        too_large ? fmt::format(
+                        "dt = {:.3g} s is too large for k_n = {:g} N/mm and the stiffest, lightest particle "
+                        "(springs summing to {:.3g} N/mm on {:.3g} g: critical dt {:.3g} s)",
+                        plan.dt, config.bond_stiffness, plan.stiffest_spring_sum,
+                        units::mass_to_grams(plan.stiffest_mass), plan.critical_dt)
+                  : fmt::format(
+                        "the ramp is too abrupt for b_d = {:g} (loading.ramp_steps = {} to {:g} mm/s), or "
+                        "contacts {:g} times as stiff as the bonds outrun dt = {:.3g} s",
+                        config.break_distance, config.ramp_steps, config.speed,
+                        config.contact_stiffness_factor, plan.dt);
     failure = fmt::format(
         "unstable at step {} (t = {:.6g} s, strain {:.4g} %): {}; likely cause: {}; "
         "suggested dt = {:.3g} s: try time.dt = {:.3g}{}",
-        summary.steps, system.time(), summary.strain, instability, cause, suggested,
-        suggested, too_large ? " or \"auto\"" : " or a longer loading.ramp_steps");
+        summary.steps, system.time(), summary.strain, instability, cause, suggested, suggested,
+        too_large ? " or \"auto\"" : " or a longer loading.ramp_steps");
   }
   const dem::StageTimes& t = system.stage_times();
   report["status"] = summary.status;
@@ -634,8 +644,10 @@ RunSummary resume_simulation(const std::filesystem::path& folder, const std::str
   const Checkpoint& c = loaded.checkpoint;
   const std::string source = loaded.file.string();
   if (c.version != version_string)
-    fmt::print(stderr, "warning: {} was written by rupture {}, this is {}: the continued run may differ in the last bits\n",
-               source, c.version, version_string);
+    fmt::print(
+        stderr,
+        "warning: {} was written by rupture {}, this is {}: the continued run may differ in the last bits\n",
+        source, c.version, version_string);
   nlohmann::json resolved;
   try {
     resolved = nlohmann::json::parse(c.config_json);

@@ -2,6 +2,8 @@
 // (state hash, breaks, ledger, for any thread count); the file format round-trips every field;
 // corrupt, truncated, foreign or inconsistent files are refused with the file and field named; a
 // folder keeps its newest two and falls back to the older one when the newest is damaged.
+#include "loading/checkpoint.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -13,7 +15,6 @@
 #include "core/error.hpp"
 #include "dem/system.hpp"
 #include "io/atomic_file.hpp"
-#include "loading/checkpoint.hpp"
 #include "loading/config.hpp"
 #include "loading/ramp.hpp"
 #include "sample/generator.hpp"
@@ -23,8 +24,8 @@
 namespace rupture::loading {
 namespace {
 
-using ::testing::HasSubstr;
 using rupture::testing::TempDir;
+using ::testing::HasSubstr;
 
 // A block pulled hard enough that bonds break and broken pairs become contacts.
 dem::Params breaking_params() {
@@ -39,9 +40,7 @@ dem::Params breaking_params() {
 struct Pull {
   double dt;
   SpeedRamp ramp;
-  void step(dem::System& system) const {
-    system.step(dt, ramp.at(double(system.steps_done() + 1) * dt));
-  }
+  void step(dem::System& system) const { system.step(dt, ramp.at(double(system.steps_done() + 1) * dt)); }
 };
 
 Pull fast_pull(const dem::System& system) {
@@ -59,7 +58,8 @@ Checkpoint checkpoint_of(const dem::System& system) {
   c.loop.separation_rule = "connectivity";
   c.config_file = "configs/test.toml";
   c.loop.curves_rows = 17;
-  c.loop.load_free = {.sum = 3.5, .count = 7, .last_strain = 1.25, .peak = 9.0, .load_free = true, .free_since = 1.5};
+  c.loop.load_free = {
+      .sum = 3.5, .count = 7, .last_strain = 1.25, .peak = 9.0, .load_free = true, .free_since = 1.5};
   c.loop.snapshots = {{0.0, "snapshots/step_0000000000.vtp"}, {1e-4, "snapshots/step_0000000500.vtp"}};
   c.engine = system.save_state();
   return c;
@@ -169,7 +169,8 @@ std::string message_of(const std::string& bytes) {
 }
 
 TEST(Checkpoint, DamagedBytesAreRefusedNamingTheField) {
-  const std::string good = encode_checkpoint(checkpoint_of(dem::System(make_chain(10, 0.5), breaking_params())));
+  const std::string good =
+      encode_checkpoint(checkpoint_of(dem::System(make_chain(10, 0.5), breaking_params())));
   std::string flipped = good;
   flipped[good.size() / 2] ^= 0x10;
   EXPECT_THAT(message_of(flipped), HasSubstr("step_0000000100.ckpt: checksum"));
@@ -256,7 +257,8 @@ TEST(Checkpoint, FolderKeepsTheNewestTwoAndFallsBackPastADamagedOne) {
 // A resume rebuilds the run from the config stored as JSON: every key must come back unchanged.
 TEST(Checkpoint, StoredConfigReadsBackToTheSameRun) {
   const RunConfig c = parse_config(
-      "[sample]\nfile = \"tissue.txt\"\ndensity = 3e-4\n[bonds]\nstiffness = 123.25\nbreak_rule = \"relative\"\n"
+      "[sample]\nfile = \"tissue.txt\"\ndensity = 3e-4\n[bonds]\nstiffness = 123.25\nbreak_rule = "
+      "\"relative\"\n"
       "[time]\ndt = 1.5e-8\n[checkpoint]\nevery = 5000\nminutes = 7.5\nkeep = 3\n",
       "configs/run.toml");
   const nlohmann::json stored = nlohmann::json::parse(to_json(c).dump());

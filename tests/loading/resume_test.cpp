@@ -31,9 +31,9 @@ namespace rupture::loading {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
+using ::testing::HasSubstr;
 
 const std::string block_config = std::string(RUPTURE_EXAMPLES_DIR) + "block.toml";
 
@@ -41,9 +41,11 @@ const std::string block_config = std::string(RUPTURE_EXAMPLES_DIR) + "block.toml
 // separation with a curve row every 20 and a checkpoint every 1000 steps. Every run is started
 // from its own folder with `-o run`, so that all of them record the same command line.
 std::vector<std::string> run_args(std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"run",   block_config,      "-o",    "run",
+  std::vector<std::string> args = {"run",   block_config,
+                                   "-o",    "run",
                                    "--set", "sample.lattice_cells=[8, 24, 4]",
-                                   "--set", "loading.speed=100", "--set", "output.interval=20",
+                                   "--set", "loading.speed=100",
+                                   "--set", "output.interval=20",
                                    "--set", "checkpoint.every=1000"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
@@ -237,7 +239,8 @@ TEST(Resume, SigtermWritesACheckpointAndExitsWithTheResumeCommand) {
   EXPECT_EQ(report["status"], "interrupted");
   const std::uint64_t step = report["steps"];
   EXPECT_GT(step, 1000u);
-  EXPECT_EQ(list_checkpoints(folder).front(), checkpoint_path(folder, step)) << "the final checkpoint is newest";
+  EXPECT_EQ(list_checkpoints(folder).front(), checkpoint_path(folder, step))
+      << "the final checkpoint is newest";
 
   const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
@@ -277,8 +280,9 @@ TEST(Resume, TooLargeDtIsStoppedAsUnstableWithTheSuggestedDt) {
   const dem::System system(sample, config.dem_params(sample.density));
   // 12 times the stability limit, let through by time.allow_unstable_dt.
   const double dt = 12.0 * system.critical_dt();
-  const Ended r = run_to_end(dir.path(), {"run", block_config, "-o", "run", "--set", fmt::format("time.dt={}", dt),
-                                          "--set", "time.allow_unstable_dt=true", "--set", "checkpoint.every=2"});
+  const Ended r =
+      run_to_end(dir.path(), {"run", block_config, "-o", "run", "--set", fmt::format("time.dt={}", dt),
+                              "--set", "time.allow_unstable_dt=true", "--set", "checkpoint.every=2"});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("unstable at step"));
   EXPECT_THAT(r.err, HasSubstr("of its radius in one step"));
