@@ -1,6 +1,7 @@
 // loading/run: the tension test from a resolved config: sample, plan (dt, checks, estimates), the
-// stepping loop with its stop rules, and the outputs (curves.csv, breaks.csv, run.json, snapshots).
-// Not: the engine (dem/) or the command line (cli/run_command).
+// stepping loop with its stop rules and instability checks, the outputs (curves.csv, breaks.csv,
+// run.json, snapshots), when to checkpoint and how to resume. Not: the engine (dem/), the
+// checkpoint file (loading/checkpoint) or the command line (cli/run_command).
 #pragma once
 
 #include <cstdint>
