@@ -100,7 +100,10 @@ Sample parse_own(std::string_view text, const std::string& source) {
   for (;;) {
     line = in.require("'box'");
     if (line.front() != '#') break;
-    if (!line.starts_with("# units:")) build.sample.provenance.emplace_back(TextReader::trim(line.substr(1)));
+    // The writer adds its own units line, so a comment that reads as one is not kept (whatever the
+    // spacing after '#': the written file must read back to the same sample).
+    const auto comment = TextReader::trim(line.substr(1));
+    if (!comment.starts_with("units:")) build.sample.provenance.emplace_back(comment);
   }
   words = TextReader::split(line);
   if (words.size() != 7 || words[0] != "box") in.fail("expected 'box xlo ylo zlo xhi yhi zhi' (mm)");
