@@ -53,7 +53,7 @@ std::string frame(std::string_view payload) {
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   fuzz::write_seeds_if_asked([] {
     dem::System system(block(), params());
-    const double dt = 0.4 * system.critical_dt();  // s
+    const double dt = 0.4 * system.critical_dt();     // s
     const loading::SpeedRamp ramp{2000.0, 100 * dt};  // mm/s, reached after a ramp of s
     for (int s = 1; s <= 20; ++s) system.step(dt, ramp.at(s * dt));
     loading::Checkpoint c;
