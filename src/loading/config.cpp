@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -237,8 +238,9 @@ const Key* find_key(const std::string& path) {
   return nullptr;
 }
 
-// Applies "a.b=value" to the table, reading value as TOML (a bare word becomes a string).
-void apply_override(toml::table& table, const std::string& assignment) {
+// Applies "a.b=value" to the table, reading value as TOML (a bare word becomes a string); returns
+// the key's path.
+std::string apply_override(toml::table& table, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + assignment, "expects key=value", "write e.g. --set bonds.stiffness=1e4");
@@ -257,14 +259,25 @@ void apply_override(toml::table& table, const std::string& assignment) {
   auto* sub = table[section].as_table();
   if (sub == nullptr) throw InputError("--set " + path, "'" + section + "' is not a table in the config");
   sub->insert_or_assign(name, *parsed.get("v"));
+  return path;
 }
 
 void check(bool ok, const std::string& where, const std::string& problem, const std::string& fix) {
   if (!ok) throw InputError(where, problem, fix);
 }
 
-void validate(const RunConfig& c, const std::string& file) {
-  const auto at = [&](const char* key) { return file + ": " + key; };
+// Where a key's value came from, for messages: the config file, or the --set that overrode it.
+struct Origin {
+  std::string file;
+  std::set<std::string> overridden;  // "section.key" paths given by --set
+  std::string at(const std::string& path) const {
+    return overridden.contains(path) ? "--set " + path : file + ": " + path;
+  }
+};
+
+void validate(const RunConfig& c, const Origin& origin) {
+  const std::string& file = origin.file;
+  const auto at = [&](const char* key) { return origin.at(key); };
   const int sources =
       int(!c.sample_file.empty()) + int(!c.sample_preset.empty()) + int(!c.sample_lattice.empty());
   check(sources == 1, file, sources == 0 ? "no sample given" : "more than one sample given",
@@ -317,7 +330,8 @@ void validate(const RunConfig& c, const std::string& file) {
   check(!c.density || *c.density > 0, at("sample.density"), "must be > 0 (g/mm^3)", "use e.g. 2.5e-4");
 }
 
-RunConfig from_table(const toml::table& table, const std::string& source) {
+RunConfig from_table(const toml::table& table, const Origin& origin) {
+  const std::string& source = origin.file;
   RunConfig config;
   config.config_file = source;
   for (const auto& [section_key, section_node] : table) {
@@ -332,10 +346,10 @@ RunConfig from_table(const toml::table& table, const std::string& source) {
       const Key* key = find_key(path);
       if (key == nullptr)
         throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
-      key->read(node, config, source + ": " + path);
+      key->read(node, config, origin.at(path));
     }
   }
-  validate(config, source);
+  validate(config, origin);
   return config;
 }
 
@@ -405,8 +419,9 @@ RunConfig parse_config(const std::string& toml_text, const std::string& source,
     throw InputError(fmt::format("{}:{}", source, e.source().begin.line), std::string(e.description()),
                      "fix the TOML syntax");
   }
-  for (const auto& assignment : overrides) apply_override(table, assignment);
-  return from_table(table, source);
+  Origin origin{source, {}};
+  for (const auto& assignment : overrides) origin.overridden.insert(apply_override(table, assignment));
+  return from_table(table, origin);
 }
 
 RunConfig load_config(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
@@ -420,7 +435,7 @@ RunConfig load_config(const std::filesystem::path& file, const std::vector<std::
 }
 
 RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem::path& config_file) {
-  RunConfig config = from_table(table_from_json(resolved, config_file.string()), config_file.string());
+  RunConfig config = from_table(table_from_json(resolved, config_file.string()), Origin{config_file.string(), {}});
   config.config_file = config_file;
   return config;
 }

@@ -12,6 +12,7 @@ namespace rupture::loading {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::StartsWith;
 
 std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
   try {
@@ -66,8 +67,13 @@ TEST(Config, BadInputIsRejectedWithFileKeyAndFix) {
               HasSubstr("use one of \"absolute\", \"relative\""));
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\npreset = \"tissue\"\n"),
               HasSubstr("more than one sample given"));
+  // A value given by --set is reported as the --set, not as the file's.
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n", {"loading.speed=-1"}),
-              HasSubstr("loading.speed: must be > 0"));
+              HasSubstr("--set loading.speed: must be > 0"));
+  EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n", {"bonds.stiffness=abc"}),
+              StartsWith("--set bonds.stiffness: expects a number"));
+  EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n[loading]\nspeed = -1\n", {"bonds.stiffness=5"}),
+              HasSubstr("test.toml: loading.speed: must be > 0"));
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n", {"time.dtt=1"}),
               HasSubstr("--set time.dtt: unknown key"));
   EXPECT_THAT(error_of("[sample\n"), HasSubstr("test.toml:1"));
