@@ -66,18 +66,18 @@ class Section {
 
 double round6(double value) { return std::stod(fmt::format("{:.6g}", value)); }
 
-// A TOML value as the text of a --set override.
-std::string toml_text(const toml::node& node) {
+// A TOML value as the text of a --set override; `where` names it in an error.
+std::string toml_text(const toml::node& node, const std::string& where) {
   if (auto s = node.value_exact<std::string>()) return "\"" + *s + "\"";
   if (auto b = node.value_exact<bool>()) return *b ? "true" : "false";
   if (auto i = node.value_exact<std::int64_t>()) return fmt::format("{}", *i);
   if (auto d = node.value_exact<double>()) return fmt::format("{}", *d);
   if (const auto* array = node.as_array()) {
     std::string text = "[";
-    for (std::size_t i = 0; i < array->size(); ++i) text += (i ? ", " : "") + toml_text(*array->get(i));
+    for (std::size_t i = 0; i < array->size(); ++i) text += (i ? ", " : "") + toml_text(*array->get(i), where);
     return text + "]";
   }
-  throw InputError("[sample]", "a value that is not a string, number, boolean or array",
+  throw InputError(where, "a value that is not a string, number, boolean or array",
                    "write it as in a run config");
 }
 
@@ -156,7 +156,7 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
     if (table == nullptr) throw InputError(source + ": sample", "expects a table", "write [sample]");
     bool names_source = false;
     for (const auto& [key, value] : *table) {
-      std::string name(key.str()), text = toml_text(value);
+      std::string name(key.str()), text = toml_text(value, source + ": sample." + name);
       if (name == "file" && value.is_string()) {
         const std::filesystem::path path = *value.value<std::string>();
         text = "\"" + (path.is_relative() ? (folder / path).string() : path.string()) + "\"";
@@ -259,7 +259,15 @@ nlohmann::json to_json(const ScanConfig& c) {
 loading::RunConfig base_config(const ScanConfig& config) {
   std::vector<std::string> overrides = config.sample;
   overrides.insert(overrides.end(), config.set.begin(), config.set.end());
-  return loading::load_config(config.base, overrides);
+  try {
+    return loading::load_config(config.base, overrides);
+  } catch (const InputError& e) {
+    // The scan's [sample] keys and [scan] set reach the run config as --set overrides: name the
+    // scan file as their place instead of a --set the user never typed.
+    const std::string message = e.what();
+    if (!message.starts_with("--set ")) throw;
+    throw InputError(config.file.string() + " ([sample] or [scan] set)", message.substr(6));
+  }
 }
 
 std::vector<double> log_spaced(const LogRange& range) {

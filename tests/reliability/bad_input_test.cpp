@@ -189,6 +189,13 @@ std::vector<BadInput> bad_inputs() {
        "bad.toml: rules.ramp: 'sideways' is not a ramp rule; use \"scaled\" or \"base\""},
       {"scan_no_points", "bad.toml", "[scan]\nbase = \"base.toml\"\n", scan,
        "bad.toml: no points; add a [grid] with k_n and b_d ranges, or [[points]] entries"},
+      // Found by the scan-config fuzzer: a dotted key in [sample] made a table the message did not name.
+      {"scan_sample_table_value", "bad.toml", scan_config + "[sample]\nx.y = 3\n", scan,
+       "bad.toml: sample.x: a value that is not a string, number, boolean or array; write it as in a run config"},
+      // [scan] set entries become run-config overrides: the message names the scan file, not a --set.
+      {"scan_set_without_value", "bad.toml",
+       "[scan]\nbase = \"" RUPTURE_EXAMPLES_DIR "block.toml\"\nset = [\"bonds.stiffness\"]\n" + scan_grid, scan,
+       "bad.toml ([sample] or [scan] set): bonds.stiffness: expects key=value"},
   };
 }
 
