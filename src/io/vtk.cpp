@@ -5,33 +5,11 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/markup.hpp"
 
 namespace rupture::io {
 
 namespace {
-
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::size_t array_size(const VtkArray& a) {
   return std::visit([](const auto& v) { return v.size(); }, a.values);
@@ -44,7 +22,7 @@ void append_array(fmt::memory_buffer& out, const VtkArray& a, std::size_t tuples
   const bool is_float = std::holds_alternative<std::vector<double>>(a.values);
   fmt::format_to(std::back_inserter(out),
                  "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
-                 is_float ? "Float64" : "Int64", xml_escape(a.name), a.components);
+                 is_float ? "Float64" : "Int64", escape_markup(a.name), a.components);
   std::visit(
       [&](const auto& values) {
         for (std::size_t k = 0; k < values.size(); ++k)
@@ -109,7 +87,7 @@ std::string format_pvd(const std::vector<PvdEntry>& entries) {
                  "byte_order=\"LittleEndian\">\n  <Collection>\n");
   for (const auto& e : entries)
     fmt::format_to(it, "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.time,
-                   xml_escape(e.file.generic_string()));
+                   escape_markup(e.file.generic_string()));
   fmt::format_to(it, "  </Collection>\n</VTKFile>\n");
   return fmt::to_string(out);
 }

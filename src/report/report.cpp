@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "figures/figures.hpp"
 #include "io/atomic_file.hpp"
+#include "io/markup.hpp"
 #include "rupture/version.hpp"
 #include "scan/results.hpp"
 
@@ -35,33 +36,6 @@ std::string base64(std::string_view bytes) {
     out += alphabet[(v >> 12) & 63u];
     out += rest == 2 ? alphabet[(v >> 6) & 63u] : '=';
     out += '=';
-  }
-  return out;
-}
-
-std::string escape_html(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char ch : text) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += ch;
-    }
   }
   return out;
 }
@@ -102,10 +76,10 @@ std::string table(const std::vector<std::string>& header, const std::vector<std:
 
 // A measured analysis quantity {"value", "error", "unit"} as (value, ± error, unit) cells.
 std::vector<std::string> measured_row(const std::string& name, const std::string& meaning, const json& m) {
-  if (!m.is_object()) return {escape_html(name), escape_html(meaning), "not found", "", ""};
+  if (!m.is_object()) return {io::escape_markup(name), io::escape_markup(meaning), "not found", "", ""};
   const auto error = m.contains("error") && m["error"].is_number() ? m["error"].get<double>() : NAN;
-  return {escape_html(name), escape_html(meaning), number_text(m.at("value").get<double>()),
-          std::isfinite(error) ? "± " + number_text(error) : "", escape_html(m.value("unit", ""))};
+  return {io::escape_markup(name), io::escape_markup(meaning), number_text(m.at("value").get<double>()),
+          std::isfinite(error) ? "± " + number_text(error) : "", io::escape_markup(m.value("unit", ""))};
 }
 
 // Nested JSON flattened to "a.b.c" keys with their values as text, in key order.
@@ -117,7 +91,7 @@ void flatten(const json& value, const std::string& prefix, std::vector<std::vect
   }
   std::string text = value.is_string() ? value.get<std::string>() : value.dump();
   if (value.is_number_float()) text = fmt::format("{:.6g}", value.get<double>());
-  rows.push_back({"<code>" + escape_html(prefix) + "</code>", escape_html(text)});
+  rows.push_back({"<code>" + io::escape_markup(prefix) + "</code>", io::escape_markup(text)});
 }
 
 json read_json(const fs::path& file) {
@@ -138,7 +112,7 @@ std::string figures_section(const std::vector<figures::Drawn>& drawn, std::size_
         "<figure><img alt=\"{0}\" src=\"data:image/png;base64,{1}\">\n<figcaption><strong>{0}</strong>: {2} "
         "(data and gnuplot script: <code>figures/{0}.dat</code>, "
         "<code>figures/{0}.gp</code>)</figcaption></figure>\n",
-        escape_html(figure.name), base64(io::read_text_file(png)), escape_html(figure.caption));
+        io::escape_markup(figure.name), base64(io::read_text_file(png)), io::escape_markup(figure.caption));
     ++count;
   }
   return html;
@@ -158,14 +132,14 @@ std::string page(const std::string& title, const std::string& body) {
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta "
       "charset=\"utf-8\">\n<title>{}</title>\n<style>\n{}</style>\n"
       "<script>\n{}</script>\n</head>\n<body>\n{}</body>\n</html>\n",
-      escape_html(title), style_sheet, figure_check, body);
+      io::escape_markup(title), style_sheet, figure_check, body);
 }
 
 std::string provenance(const fs::path& folder, const std::string& command) {
   return fmt::format(
       "<p>Written by rupture {} (<code>{}</code>) from the folder <code>{}</code>. Every number below is "
       "read from the files of that folder; the figures are redrawn from them.</p>\n",
-      escape_html(version_string), escape_html(command), escape_html(fs::absolute(folder).string()));
+      io::escape_markup(version_string), io::escape_markup(command), io::escape_markup(fs::absolute(folder).string()));
 }
 
 // The one sentence a reader wants first: where the precursor was and how far ahead of failure.
@@ -180,7 +154,7 @@ std::string run_summary(const json& analysis) {
   const auto& x_c = analysis["x_c"];
   const auto& delta = analysis["delta_x"];
   if (x_p.is_object() && x_c.is_object() && delta.is_object()) {
-    const std::string unit = escape_html(delta.value("unit", ""));
+    const std::string unit = io::escape_markup(delta.value("unit", ""));
     const auto ci95 = delta.at("ci95");
     text = fmt::format(
         "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, before the force peaks at "
@@ -195,10 +169,10 @@ std::string run_summary(const json& analysis) {
     text += " The curve passed the acceptance rules.";
   else
     text +=
-        " Analysis rejected: " + escape_html(analysis.value("rejection", std::string("no reason given"))) +
+        " Analysis rejected: " + io::escape_markup(analysis.value("rejection", std::string("no reason given"))) +
         ".";
   if (analysis["mechanism"].is_object()) {
-    text += " Breaking mechanism: <strong>" + escape_html(analysis["mechanism"].value("class", "")) +
+    text += " Breaking mechanism: <strong>" + io::escape_markup(analysis["mechanism"].value("class", "")) +
             "</strong>.";
   }
   return "<p class=\"summary\">" + text + "</p>\n";
@@ -223,7 +197,7 @@ std::string analysis_section(const json& analysis) {
   html +=
       table({"quantity", "meaning", "value", "uncertainty", "unit"}, rows, {false, false, true, true, false});
   if (const auto& delta = analysis["delta_x"]; delta.is_object()) {
-    const std::string unit = escape_html(delta.value("unit", ""));
+    const std::string unit = io::escape_markup(delta.value("unit", ""));
     const auto interval = [&](const char* key) {
       return fmt::format("[{}, {}]", number_text(delta.at(key).at(0).get<double>()),
                          number_text(delta.at(key).at(1).get<double>()));
@@ -244,8 +218,8 @@ std::string analysis_section(const json& analysis) {
                     flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
   }
   if (const auto& mechanism = analysis["mechanism"]; mechanism.is_object()) {
-    html += "<p>Breaking mechanism: <strong>" + escape_html(mechanism.value("class", "")) + "</strong> — " +
-            escape_html(mechanism.value("reason", "")) + "</p>\n";
+    html += "<p>Breaking mechanism: <strong>" + io::escape_markup(mechanism.value("class", "")) + "</strong> — " +
+            io::escape_markup(mechanism.value("reason", "")) + "</p>\n";
   }
   return html;
 }
@@ -254,14 +228,14 @@ std::string run_section(const json& run) {
   if (run.is_null()) return "<h2>Run</h2>\n<p>No <code>run.json</code> in this folder.</p>\n";
   const auto get = [&](const char* key) { return run.contains(key) ? run[key] : json(); };
   const auto num = [&](const json& v) {
-    return v.is_number() ? number_text(v.get<double>()) : escape_html(v.dump());
+    return v.is_number() ? number_text(v.get<double>()) : io::escape_markup(v.dump());
   };
   const auto& balance = run["energy_balance"];
   const auto& plan = run["plan"];
   std::vector<std::vector<std::string>> rows{
-      {"status", escape_html(get("status").is_string() ? get("status").get<std::string>() : "unknown"), ""},
+      {"status", io::escape_markup(get("status").is_string() ? get("status").get<std::string>() : "unknown"), ""},
       {"why it stopped",
-       escape_html(get("stop_reason").is_string() ? get("stop_reason").get<std::string>() : "–"), ""},
+       io::escape_markup(get("stop_reason").is_string() ? get("stop_reason").get<std::string>() : "–"), ""},
       {"steps", num(get("steps")), "1"},
       {"final strain", num(get("final_strain_percent")), "%"},
       {"bonds broken", num(get("broken_bonds")), "1"},
@@ -281,9 +255,9 @@ std::string run_section(const json& run) {
     rows.push_back({"time step dt", num(plan.value("dt_s", json())), "s"});
     rows.push_back({"stability limit of dt", num(plan.value("critical_dt_s", json())), "s"});
   }
-  if (run.contains("error")) rows.push_back({"error", escape_html(run["error"].dump()), ""});
+  if (run.contains("error")) rows.push_back({"error", io::escape_markup(run["error"].dump()), ""});
   std::string html = "<h2>Run</h2>\n<p>From <code>run.json</code>: <code>" +
-                     escape_html(run.value("command", std::string("?"))) + "</code></p>\n";
+                     io::escape_markup(run.value("command", std::string("?"))) + "</code></p>\n";
   html += table({"fact", "value", "unit"}, rows, {false, true, false});
   if (run["sample"].is_object()) {
     std::vector<std::vector<std::string>> sample_rows;
@@ -304,7 +278,7 @@ std::string run_report(const fs::path& folder, const std::string& command, std::
   const json analysis = fs::exists(folder / "analysis.json") ? read_json(folder / "analysis.json") : json();
   const json run = fs::exists(folder / "run.json") ? read_json(folder / "run.json") : json();
   const auto drawn = figures::plot(folder, folder / "figures", {});
-  std::string body = "<h1>Tension test: " + escape_html(fs::absolute(folder).filename().string()) + "</h1>\n";
+  std::string body = "<h1>Tension test: " + io::escape_markup(fs::absolute(folder).filename().string()) + "</h1>\n";
   body += provenance(folder, command) + run_summary(analysis);
   body += figures_section(drawn, count) + analysis_section(analysis) + run_section(run);
   return page("rupture report: " + folder.filename().string(), body);
@@ -314,7 +288,7 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
   const auto drawn = figures::plot(folder, folder / "figures", {});
   const auto results = scan::read_results(folder / "results.csv");
   std::string body =
-      "<h1>Parameter scan: " + escape_html(fs::absolute(folder).filename().string()) + "</h1>\n";
+      "<h1>Parameter scan: " + io::escape_markup(fs::absolute(folder).filename().string()) + "</h1>\n";
   body += provenance(folder, command);
   std::size_t accepted = 0;
   for (std::size_t r = 0; r < results.rows.size(); ++r) {
@@ -336,13 +310,13 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
   std::vector<std::string> header;
   std::vector<bool> numeric;
   for (const auto& field : results.header) {
-    header.push_back(escape_html(field));
+    header.push_back(io::escape_markup(field));
     numeric.push_back(field.find('[') != std::string::npos);
   }
   std::vector<std::vector<std::string>> rows;
   for (const auto& row : results.rows) {
     std::vector<std::string> cells;
-    for (const auto& field : row) cells.push_back(escape_html(field));
+    for (const auto& field : row) cells.push_back(io::escape_markup(field));
     rows.push_back(std::move(cells));
   }
   body +=

@@ -12,9 +12,6 @@ namespace rupture::report {
 // Standard base64 (RFC 4648, with '=' padding), for data: URIs.
 std::string base64(std::string_view bytes);
 
-// Text made safe inside HTML element content and double-quoted attribute values.
-std::string escape_html(std::string_view text);
-
 struct ReportResult {
   std::filesystem::path html;  // FOLDER/report.html
   std::size_t figures = 0;     // pictures embedded

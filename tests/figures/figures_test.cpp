@@ -27,13 +27,12 @@ namespace {
 namespace fs = std::filesystem;
 using namespace rupture;
 using rupture::testing::run_rupture;
+using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using ::testing::HasSubstr;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
-
-std::string shell_quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 struct PngSize {
   std::uint32_t width = 0, height = 0;

@@ -23,6 +23,7 @@
 
 #include "figures/scan_fixture.hpp"
 #include "io/atomic_file.hpp"
+#include "io/markup.hpp"
 #include "support/tool.hpp"
 
 namespace {
@@ -30,13 +31,12 @@ namespace {
 namespace fs = std::filesystem;
 using namespace rupture;
 using rupture::testing::run_rupture;
+using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using ::testing::HasSubstr;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
-
-std::string shell_quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // What the checker found in a page: the values of every src/href attribute, the <img> sources and
 // the text of the <table> cells, in order.
@@ -210,7 +210,7 @@ TEST(Report, Base64AndEscapingFollowTheStandards) {
   EXPECT_EQ(report::base64("foobar"), "Zm9vYmFy");
   EXPECT_EQ(decode_base64(report::base64(std::string("\x00\xff\x10 png", 8))),
             std::string("\x00\xff\x10 png", 8));
-  EXPECT_EQ(report::escape_html(R"(<a href="x">&'</a>)"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
+  EXPECT_EQ(io::escape_markup(R"(<a href="x">&'</a>)"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;");
 }
 
 // The page checker itself: each kind of fault it exists for is reported.

@@ -17,7 +17,7 @@ using rupture::testing::run_rupture;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using test_support::physics;
-using test_support::shell_quoted;
+using rupture::testing::shell_quoted;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
 

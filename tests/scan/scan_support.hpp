@@ -14,7 +14,7 @@
 
 namespace rupture::scan::test_support {
 
-inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+using rupture::testing::shell_quoted;
 
 // The physics columns of a results.csv (every column but wall_time), row by row, as text: equal
 // strings mean equal bytes.

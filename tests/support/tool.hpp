@@ -55,6 +55,9 @@ inline std::string slurp(const std::filesystem::path& file) {
   return text;
 }
 
+// A path as one shell word (the test folders hold no single quotes).
+inline std::string shell_quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+
 // Runs `rupture <args>` through the shell (args are shell words: quote paths yourself), with
 // stdin from /dev/null unless `stdin_file` is given, and CI=1 so no progress line is drawn.
 inline ToolResult run_rupture(const std::string& args, const std::string& stdin_file = "/dev/null") {
