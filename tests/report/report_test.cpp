@@ -410,7 +410,7 @@ double inked_fraction(const Image& image) {
 }
 
 TEST(ReportBrowser, RunReportRendersWithEveryFigureAndNoConsoleMessage) {
-  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed (scripts/bootstrap installs it)";
+  ASSERT_TRUE(have_chromium()) << "chromium is missing: scripts/bootstrap installs it (scripts/packages.txt)";
   TempDir dir;
   const auto run = analysed_block_run(dir);
   ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
@@ -432,7 +432,7 @@ TEST(ReportBrowser, RunReportRendersWithEveryFigureAndNoConsoleMessage) {
 
 // The same checks catch a broken page: a picture that does not decode and a script error.
 TEST(ReportBrowser, BrokenFigureAndScriptErrorAreCaught) {
-  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed (scripts/bootstrap installs it)";
+  ASSERT_TRUE(have_chromium()) << "chromium is missing: scripts/bootstrap installs it (scripts/packages.txt)";
   TempDir dir;
   const auto scan = dir / "scan";
   rupture::testing::write_scan_fixture(scan);
