@@ -1,7 +1,10 @@
 #include "analysis/analysis.hpp"
 
+#include "analysis/bootstrap.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <boost/math/tools/roots.hpp>
 #include <fmt/format.h>
@@ -143,16 +146,147 @@ std::size_t minimum_rows(const AnalysisOptions& options) {
                                 4 * options.peak.min_side + 8, 16});
 }
 
+namespace {
+
+// What one peak measurement needs besides the curves: the filter (its automatic choices already
+// made), the derivative, the peak fits and where the loading phase ends.
+struct PeakSearch {
+  FilterSettings filter;
+  int derivative_window = 7;
+  PeakFitOptions peak;
+  double collapse_fraction = 0.25;
+  // Samples at either end that the fits leave out: a bootstrap window's padding, where the filter's
+  // and the derivative's edge effects live.
+  std::size_t margin_low = 0, margin_high = 0;
+};
+
+struct PeakMeasurement {
+  std::vector<double> filtered_force, filtered_energy, energy_rate;
+  PeakFit force, energy, rate;
+  std::size_t phase_end = 0;  // last sample of the loading phase
+};
+
+// The loading phase ends where the filtered force, after its maximum, first falls below
+// `collapse_fraction` of it: after that the sample has come apart, and what E_e and ℰ do (the
+// halves ringing, fragments flying) is no precursor. x_p and x_m are sought inside the phase, on
+// either side of x_c: nothing assumes x_p < x_c.
+std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_t force_top, double collapse_fraction) {
+  const double level = collapse_fraction * filtered_force[force_top];
+  for (std::size_t i = force_top + 1; i < filtered_force.size(); ++i) {
+    if (filtered_force[i] < level) return i;
+  }
+  return filtered_force.size() - 1;
+}
+
+// Filter, derivative and the three maxima: the one measurement made on the data and on every
+// bootstrap replicate.
+PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double> force, std::span<const double> energy,
+                              const PeakSearch& search) {
+  PeakMeasurement m;
+  FilterSettings filter = search.filter;
+  m.filtered_force = apply_filter(filter, force);
+  m.filtered_energy = apply_filter(filter, energy);
+  const double step = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
+  m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
+  const std::size_t first = std::min(search.margin_low, xs.size() - 1);
+  const std::size_t last = xs.size() - 1 - std::min(search.margin_high, xs.size() - 1 - first);
+  const auto inner = [&](std::span<const double> y, std::size_t end) { return y.subspan(first, end - first + 1); };
+  m.force = fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak);
+  m.force.index += first;
+  m.phase_end = std::min(last, loading_phase_end(m.filtered_force, m.force.index, search.collapse_fraction));
+  // E_e often peaks right at the collapse: its fit may reach min_side samples past the phase.
+  const std::size_t energy_end = std::min(last, m.phase_end + search.peak.min_side);
+  m.energy = fit_peak(inner(xs, energy_end), inner(m.filtered_energy, energy_end), 0.0, 1.0, search.peak);
+  m.rate = fit_peak(inner(xs, m.phase_end), inner(m.energy_rate, m.phase_end), 0.0, 1.0, search.peak);
+  m.energy.index += first;
+  m.rate.index += first;
+  return m;
+}
+
+// x_c and x_p are required; x_m may be missing (E_e still rising at the end of the phase), and
+// then stays NaN in every replicate.
+std::optional<PeakValues> peak_values(const PeakMeasurement& m, bool want_energy_peak) {
+  if (!m.force.found || !m.rate.found || (want_energy_peak && !m.energy.found)) return std::nullopt;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return PeakValues{m.force.x, m.force.value, m.rate.x, m.rate.value, want_energy_peak ? m.energy.x : nan,
+                    want_energy_peak ? m.energy.value : nan};
+}
+
+// First row whose strain is below the one before: a curve that unloads and reloads is no single
+// loading, and sorting it would splice the branches.
+std::optional<std::size_t> first_strain_decrease(std::span<const double> strain) {
+  for (std::size_t i = 1; i < strain.size(); ++i) {
+    if (strain[i] < strain[i - 1]) return i;
+  }
+  return std::nullopt;
+}
+
+// Samples on either side of the peak fit windows that the bootstrap measures as well, so that the
+// filter's and the derivative's edge effects stay outside the fits.
+std::size_t bootstrap_padding(const PeakSearch& search, std::size_t n) {
+  double length = search.derivative_window;
+  if (search.filter.kind == FilterKind::butterworth) length = std::max(length, 4.0 / search.filter.cutoff);
+  if (search.filter.kind == FilterKind::savitzky_golay) length = std::max<double>(length, 2 * search.filter.savgol_window);
+  return std::min(n, static_cast<std::size_t>(std::ceil(length)) + 4 * search.peak.min_side);
+}
+
+std::vector<double> replicate_values(const std::vector<PeakValues>& replicates, double (*value)(const PeakValues&)) {
+  std::vector<double> v;
+  v.reserve(replicates.size());
+  for (const auto& r : replicates) v.push_back(value(r));
+  return v;
+}
+
+// 1.4826 median absolute deviation of a derived quantity over the replicates: Γ divides by δ_x,
+// so a few replicates with δ_x near 0 would make a plain sd meaningless.
+double robust_spread(const std::vector<PeakValues>& replicates, double (*value)(const PeakValues&)) {
+  auto v = replicate_values(replicates, value);
+  if (v.size() < 2) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  const double median = v[v.size() / 2];
+  for (auto& x : v) x -= median;
+  return robust_scale(v);
+}
+
+double gamma_of(const PeakValues& v) { return (v.x_m - v.x_c) / (v.x_c - v.x_p); }
+double energy_ratio_of(const PeakValues& v) { return v.E_max / (v.x_p * v.Erate_max); }
+
+// The replicates' δ values as a density on `bins` equal bins over their range (1/strain unit).
+void sampling_density(const std::vector<double>& deltas, DelayPosterior& post, std::size_t bins = 81) {
+  if (deltas.empty()) return;
+  const auto [lo, hi] = std::minmax_element(deltas.begin(), deltas.end());
+  const double width = *hi > *lo ? (*hi - *lo) / static_cast<double>(bins) : 1.0;
+  post.delta.resize(bins);
+  post.density.assign(bins, 0.0);
+  for (std::size_t k = 0; k < bins; ++k) post.delta[k] = *lo + (static_cast<double>(k) + 0.5) * width;
+  for (double d : deltas) {
+    const auto k = std::min(bins - 1, static_cast<std::size_t>((d - *lo) / width));
+    post.density[k] += 1.0 / (static_cast<double>(deltas.size()) * width);
+  }
+}
+
+}  // namespace
+
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const std::vector<double>& break_strains) {
   AnalysisResult r;
   r.source = curve.source;
   r.strain_unit = curve.strain_unit;
   r.force_unit = curve.force_unit;
   r.energy_unit = curve.energy_unit;
+  r.delay_method = options.delay_method;
   const std::size_t needed = minimum_rows(options);
   if (curve.strain.size() < needed) {
     throw InputError(curve.source, fmt::format("{} data rows, the analysis needs at least {}", curve.strain.size(), needed),
                      "give a longer curve (or a weaker filter: --filter none)");
+  }
+  // 0. One loading: a strain that goes back is rejected, naming the rows (data row numbers, 1-based).
+  if (const auto back = first_strain_decrease(curve.strain)) {
+    r.resample.input_rows = curve.strain.size();
+    r.rejection = fmt::format(
+        "the strain decreases from data row {} ({:.6g} {}) to row {} ({:.6g} {}): the curve unloads and reloads; "
+        "analyse one monotone loading branch (e.g. rows 1-{})",
+        *back, curve.strain[*back - 1], curve.strain_unit, *back + 1, curve.strain[*back], curve.strain_unit, *back);
+    return r;
   }
   // 1. Uniform grid.
   const std::span<const double> columns[] = {curve.force, curve.energy};
@@ -169,12 +303,26 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const auto& force = grid.y[0];
   const auto& energy = grid.y[1];
 
-  // 2. One zero-phase filter for both curves.
-  const std::span<const double> raw[] = {force, energy};
-  choose_shared_filter(options.filter, raw);
+  // 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
+  // the noise (finite bundles: every break is a step), the discrepancy principle runs on the
+  // increments, which are then the white part: on the curves themselves it would take the walk's
+  // low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed.
+  const auto whole_curve_noise = estimate_noise(force, energy, 0, n - 1);
+  const auto walk_dominated = [](const NoiseComponents& c) { return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white; };
+  r.filter_on_increments = walk_dominated(whole_curve_noise.force) || walk_dominated(whole_curve_noise.energy);
+  if (r.filter_on_increments) {
+    std::vector<double> force_steps(n - 1), energy_steps(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      force_steps[i] = force[i + 1] - force[i];
+      energy_steps[i] = energy[i + 1] - energy[i];
+    }
+    const std::span<const double> steps[] = {force_steps, energy_steps};
+    choose_shared_filter(options.filter, steps);
+  } else {
+    const std::span<const double> raw[] = {force, energy};
+    choose_shared_filter(options.filter, raw);
+  }
   r.filter = options.filter;
-  r.filtered_force = apply_filter(r.filter, force);
-  r.filtered_energy = apply_filter(r.filter, energy);
   r.force_noise = noise_from_differences(force);
   r.energy_noise = noise_from_differences(energy);
 
@@ -189,45 +337,44 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
     window = odd_at_least(std::clamp(static_cast<int>(std::lround(length)), 7, std::clamp(static_cast<int>(n / 4), 7, 101)));
   }
   r.derivative_window = odd_at_least(window);
-  r.energy_rate = savgol_filter(r.filtered_energy, r.derivative_window, 3, 1, grid.step);
+  const PeakSearch search{r.filter, r.derivative_window, options.peak, options.acceptance.collapse_fraction};
 
-  // 4. Maxima by cubic fits. Noise of each curve: σ̂ and the correlation length of raw − filtered;
-  // ℰ's noise is that of the derivative weights applied to E_e's noise, correlated over its window.
-  std::vector<double> residual(n);
-  for (std::size_t i = 0; i < n; ++i) residual[i] = force[i] - r.filtered_force[i];
-  const double force_correlation = correlation_length(residual);
-  for (std::size_t i = 0; i < n; ++i) residual[i] = energy[i] - r.filtered_energy[i];
-  const double energy_correlation = correlation_length(residual);
-  const auto weights = savgol_coefficients(r.derivative_window, 3, 1, r.derivative_window / 2);
-  double weight_norm = 0.0;
-  for (double w : weights) weight_norm += w * w;
-  const double rate_noise = r.energy_noise * std::sqrt(weight_norm) / grid.step;
-
-  r.force_peak = fit_peak(xs, r.filtered_force, r.force_noise, force_correlation, options.peak);
-  r.energy_peak = fit_peak(xs, r.filtered_energy, r.energy_noise, energy_correlation, options.peak);
-  r.rate_peak = fit_peak(xs, r.energy_rate, rate_noise, std::max<double>(r.derivative_window, energy_correlation), options.peak);
+  // 4. The maxima, inside the loading phase.
+  auto measurement = measure_peaks(xs, force, energy, search);
+  r.filtered_force = std::move(measurement.filtered_force);
+  r.filtered_energy = std::move(measurement.filtered_energy);
+  r.energy_rate = std::move(measurement.energy_rate);
+  r.force_peak = measurement.force;
+  r.energy_peak = measurement.energy;
+  r.rate_peak = measurement.rate;
+  r.loading_phase_end = xs[measurement.phase_end];
   const std::string rate_unit = per_strain(curve.energy_unit, curve.strain_unit);
+  const std::size_t phase = measurement.phase_end + 1;
+  // Values without errors for now: the bootstrap (step 6) supplies them where all three peaks are found.
   if (r.force_peak->found) {
-    r.x_c = measured(r.force_peak->x, r.force_peak->x_error, curve.strain_unit);
-    r.F_c = measured(r.force_peak->value, r.force_peak->value_error, curve.force_unit);
+    r.x_c = measured(r.force_peak->x, 0.0, curve.strain_unit);
+    r.F_c = measured(r.force_peak->value, 0.0, curve.force_unit);
   }
   if (r.energy_peak->found) {
-    r.x_m = measured(r.energy_peak->x, r.energy_peak->x_error, curve.strain_unit);
-    r.E_max = measured(r.energy_peak->value, r.energy_peak->value_error, curve.energy_unit);
+    r.x_m = measured(r.energy_peak->x, 0.0, curve.strain_unit);
+    r.E_max = measured(r.energy_peak->value, 0.0, curve.energy_unit);
   }
   if (r.rate_peak->found) {
-    r.x_p = measured(r.rate_peak->x, r.rate_peak->x_error, curve.strain_unit);
-    r.Erate_max = measured(r.rate_peak->value, r.rate_peak->value_error, rate_unit);
+    r.x_p = measured(r.rate_peak->x, 0.0, curve.strain_unit);
+    r.Erate_max = measured(r.rate_peak->value, 0.0, rate_unit);
   }
 
-  // 6a. Acceptance of the peaks (before spending time on the posterior).
+  // 5. Acceptance of the peaks (before spending time on the uncertainty).
   const auto reject = [&](std::string reason) {
     if (r.rejection.empty()) r.rejection = std::move(reason);
   };
   const std::size_t force_top = r.force_peak->index;
   const double F_top = r.filtered_force[force_top];
+  // Competing maxima are sought over the whole curve (a second loading after a collapse makes x_c
+  // ambiguous); the mechanism's count of maxima is the loading phase's, so that the ringing of the
+  // separated halves is not taken for a slow destruction.
   const auto maxima = significant_maxima(r.filtered_force, 0.05 * std::abs(F_top));
-  r.force_maxima = static_cast<int>(maxima.size());
+  r.force_maxima = static_cast<int>(significant_maxima(std::span<const double>(r.filtered_force).first(phase), 0.05 * std::abs(F_top)).size());
   if (!r.force_peak->found) {
     reject("force peak: " + r.force_peak->problem);
   } else if (prominence_of_maximum(r.filtered_force, force_top) < options.acceptance.min_prominence * std::abs(F_top)) {
@@ -242,42 +389,121 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       }
     }
   }
+  const std::span<const double> phase_rate = std::span<const double>(r.energy_rate).first(phase);
   if (!r.rate_peak->found) {
     reject("energy-rate peak: " + r.rate_peak->problem);
-  } else if (prominence_of_maximum(r.energy_rate, r.rate_peak->index) <
+  } else if (prominence_of_maximum(phase_rate, r.rate_peak->index) <
              options.acceptance.min_prominence * std::abs(r.energy_rate[r.rate_peak->index])) {
     reject(fmt::format("energy-rate peak not pronounced: it rises less than {:g} % of ℰ_max above the curve on either side",
                        100.0 * options.acceptance.min_prominence));
   }
 
-  // 4-5. δ_x, Γ, A_r, α.
-  if (r.x_c && r.x_p) {
-    r.delay = infer_delay(grid.x0, grid.step, force, r.filtered_force, r.energy_rate, force_top, options.delay);
-    r.delta_x = measured(r.delay->mean, r.delay->sd, curve.strain_unit);
-    r.delta_x_direct = measured(r.x_c->value - r.x_p->value, std::hypot(r.x_c->error, r.x_p->error), curve.strain_unit);
-    const double delta = r.delay->mean;
-    if (r.x_m && delta != 0.0) {
-      const double g = (r.x_m->value - r.x_c->value) / delta;
-      const double error = std::sqrt((r.x_m->error * r.x_m->error + r.x_c->error * r.x_c->error) / (delta * delta) +
-                                     g * g * r.delay->sd * r.delay->sd / (delta * delta));
-      r.Gamma = measured(g, error, "1");
+  // 6. Uncertainty of every number: a parametric bootstrap of the measurement (bootstrap.hpp) over
+  // the span of the three fits, padded.
+  const bool have_energy_peak = r.energy_peak->found;
+  const auto values = peak_values({{}, {}, {}, *r.force_peak, *r.energy_peak, *r.rate_peak, measurement.phase_end}, have_energy_peak);
+  if (values) {
+    // The fits may wander by their own width in a replicate: the replicates search the fit windows
+    // widened by that much on each side (the core) and filter the core plus a padding.
+    double low_x = xs[n - 1], high_x = xs[0];
+    for (const PeakFit* fit : {&*r.force_peak, &*r.energy_peak, &*r.rate_peak}) {
+      if (!fit->found) continue;
+      const double width = fit->window_high - fit->window_low;
+      low_x = std::min(low_x, fit->window_low - width);
+      high_x = std::max(high_x, fit->window_high + width);
     }
-    if (r.E_max) {
-      const double ratio = r.E_max->value / (r.x_p->value * r.Erate_max->value);
-      const auto rel = [](const Measured& m) { return m.value != 0.0 ? m.error / m.value : 0.0; };
-      const double error = std::abs(ratio) * std::hypot(rel(*r.E_max), rel(*r.x_p), rel(*r.Erate_max));
-      r.A_r = measured(ratio, error, "1");
+    const std::size_t pad = bootstrap_padding(search, n);
+    const auto index_of = [&](double x) {
+      return static_cast<std::size_t>(std::clamp<double>(std::lround((x - grid.x0) / grid.step), 0.0, static_cast<double>(n - 1)));
+    };
+    const std::size_t core_low = index_of(low_x), core_high = std::min(index_of(high_x), measurement.phase_end);
+    const std::size_t a = core_low > pad ? core_low - pad : 0;
+    const std::size_t b = std::min(n - 1, core_high + pad);
+    r.noise_model = estimate_noise(force, energy, a, b);
+    const std::span<const double> window_x = std::span<const double>(xs).subspan(a, b - a + 1);
+    const std::span<const double> smooth_force = std::span<const double>(r.filtered_force).subspan(a, b - a + 1);
+    const std::span<const double> smooth_energy = std::span<const double>(r.filtered_energy).subspan(a, b - a + 1);
+    PeakSearch replicate_search = search;
+    replicate_search.margin_low = core_low - a;
+    replicate_search.margin_high = b - std::max(core_high, core_low);
+    const PeakMeasure measure = [&](std::span<const double> f, std::span<const double> e) {
+      return peak_values(measure_peaks(window_x, f, e, replicate_search), have_energy_peak);
+    };
+    r.bootstrap_window_low = xs[a];
+    r.bootstrap_window_high = xs[b];
+    const auto boot = bootstrap_peaks(smooth_force, smooth_energy, r.noise_model, measure, options.uncertainty);
+    r.bootstrap_replicates = boot.attempted;
+    r.bootstrap_failed = boot.failed;
+    const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
+      return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
+    };
+    const auto x_c = interval(values->x_c, [](const PeakValues& v) { return v.x_c; });
+    const auto F_c = interval(values->F_c, [](const PeakValues& v) { return v.F_c; });
+    const auto x_p = interval(values->x_p, [](const PeakValues& v) { return v.x_p; });
+    const auto Erate = interval(values->Erate_max, [](const PeakValues& v) { return v.Erate_max; });
+    const auto x_m = interval(values->x_m, [](const PeakValues& v) { return v.x_m; });
+    const auto E_max = interval(values->E_max, [](const PeakValues& v) { return v.E_max; });
+    r.x_c = measured(x_c.estimate, x_c.sd, curve.strain_unit);
+    r.F_c = measured(F_c.estimate, F_c.sd, curve.force_unit);
+    r.x_p = measured(x_p.estimate, x_p.sd, curve.strain_unit);
+    r.Erate_max = measured(Erate.estimate, Erate.sd, rate_unit);
+    if (have_energy_peak) {
+      r.x_m = measured(x_m.estimate, x_m.sd, curve.strain_unit);
+      r.E_max = measured(E_max.estimate, E_max.sd, curve.energy_unit);
     }
-    r.alpha = alpha_estimate(*r.delay, *r.x_p, r.Gamma, r.A_r);
-    if (r.delay->at_prior_bound) {
-      reject("δ_x undetermined: the posterior reaches the end of the admissible shifts (the data around the peaks is too short)");
-    } else if (r.delay->sd > options.acceptance.max_relative_delay_sd * std::abs(r.x_c->value - grid.x0)) {
-      reject(fmt::format("δ_x too uncertain: sd {:.3g} {} exceeds {:g} of x_c", r.delay->sd, curve.strain_unit,
+    const auto direct = interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; });
+    r.delta_x_direct = measured(direct.estimate, direct.sd, curve.strain_unit);
+
+    // 7. δ_x by the chosen method, then Γ, A_r, α.
+    DelayPosterior delay;
+    if (options.delay_method == DelayMethod::fitted_maxima) {
+      delay.mean = delay.map = delay.median = direct.estimate;
+      delay.sd = direct.sd;
+      delay.ci68_low = direct.ci68_low;
+      delay.ci68_high = direct.ci68_high;
+      delay.ci95_low = direct.ci95_low;
+      delay.ci95_high = direct.ci95_high;
+      std::vector<double> shifted = replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; });
+      std::vector<double> sorted = shifted;
+      std::sort(sorted.begin(), sorted.end());
+      const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+      const double widen = direct.spread > 0.0 ? direct.sd / direct.spread : 1.0;
+      for (auto& d : shifted) d = direct.estimate + widen * (d - median);
+      sampling_density(shifted, delay);
+      r.delta_x_bias = direct.bias;
+    } else {
+      delay = infer_delay(grid.x0, grid.step, force, r.filtered_force, r.energy_rate, force_top, options.delay);
+      if (!(delay.scale_at_map > 0.0)) {
+        reject(fmt::format("no positive scale c fits F ≈ c·ℰ(x − δ) (best c = {:.3g}): the force peak does not match the "
+                           "energy-rate peak",
+                           delay.scale_at_map));
+      }
+      if (delay.at_prior_bound) {
+        reject("δ_x undetermined: the posterior reaches the end of the admissible shifts (the data around the peaks is too short)");
+      }
+    }
+    r.delay = delay;
+    r.delta_x = measured(delay.mean, delay.sd, curve.strain_unit);
+    const double delta = delay.mean;
+    if (delta != 0.0 && have_energy_peak) {
+      r.Gamma = measured((r.x_m->value - r.x_c->value) / delta, robust_spread(boot.replicates, gamma_of), "1");
+    }
+    if (have_energy_peak) {
+      const auto ratio = interval(energy_ratio_of(*values), energy_ratio_of);  // bias-corrected like every other number
+      r.A_r = measured(ratio.estimate, ratio.sd, "1");
+    }
+    r.alpha = alpha_estimate(delay, *r.x_p, r.Gamma, r.A_r);
+    if (boot.failed > options.acceptance.max_failed_replicates * boot.attempted) {
+      reject(fmt::format("the peaks are unstable under the curve's own noise: in {} of {} noise replicates a maximum "
+                         "was not found",
+                         boot.failed, boot.attempted));
+    } else if (delay.sd > options.acceptance.max_relative_delay_sd * std::abs(r.x_c->value - grid.x0)) {
+      reject(fmt::format("δ_x too uncertain: sd {:.3g} {} exceeds {:g} of x_c", delay.sd, curve.strain_unit,
                          options.acceptance.max_relative_delay_sd));
     }
   }
 
-  // 7. Mechanism features and class.
+  // 8. Mechanism features and class.
   if (r.x_c) {
     const double x_c = r.x_c->value;
     auto& f = r.features;
@@ -327,6 +553,10 @@ nlohmann::json peak_json(const std::optional<PeakFit>& fit, const std::string& u
 
 }  // namespace
 
+const char* to_string(DelayMethod method) {
+  return method == DelayMethod::fitted_maxima ? "fitted-maxima" : "shift-l1";
+}
+
 nlohmann::json to_json(const AnalysisResult& r) {
   nlohmann::json j;
   j["source"] = r.source;
@@ -368,23 +598,44 @@ nlohmann::json to_json(const AnalysisResult& r) {
                     {"method", "cubic least squares around the largest sample; stationary point"}};
   if (r.delay) {
     const auto& d = *r.delay;
-    j["delta_x"] = {{"value", d.mean}, {"error", d.sd}, {"unit", r.strain_unit},
-                    {"map", d.map}, {"mean", d.mean}, {"median", d.median}, {"sd", d.sd},
-                    {"ci68", {d.ci68_low, d.ci68_high}}, {"ci95", {d.ci95_low, d.ci95_high}},
-                    {"prior", {{"kind", "uniform"}, {"range", {d.prior_low, d.prior_high}}}},
-                    {"model", "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)"},
-                    {"misfit_window", {d.window_low, d.window_high}}, {"misfit_samples", d.window_samples},
-                    {"force_noise_sigma", {{"value", d.noise_sigma}, {"unit", r.force_unit}}},
-                    {"misfit_scale", {{"value", d.misfit_scale}, {"unit", r.force_unit}}},
-                    {"correlation_length_samples", d.correlation},
-                    {"scale_at_map", {{"value", d.scale_at_map}, {"unit", unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit))}}},
-                    {"at_prior_bound", d.at_prior_bound},
-                    {"posterior", {{"delta", d.delta}, {"density", d.density},
-                                   {"delta_unit", r.strain_unit}, {"density_unit", unit_ratio("1", r.strain_unit)}}}};
+    nlohmann::json delta = {{"value", d.mean}, {"error", d.sd}, {"unit", r.strain_unit}, {"method", to_string(r.delay_method)},
+                            {"map", d.map}, {"mean", d.mean}, {"median", d.median}, {"sd", d.sd},
+                            {"ci68", {d.ci68_low, d.ci68_high}}, {"ci95", {d.ci95_low, d.ci95_high}}};
+    const nlohmann::json density = {{"delta", d.delta}, {"density", d.density}, {"delta_unit", r.strain_unit},
+                                    {"density_unit", unit_ratio("1", r.strain_unit)}};
+    if (r.delay_method == DelayMethod::fitted_maxima) {
+      delta["model"] = "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise";
+      delta["bias"] = r.delta_x_bias;
+      delta["sampling_distribution"] = density;
+    } else {
+      delta["model"] = "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)";
+      delta["prior"] = {{"kind", "uniform"}, {"range", {d.prior_low, d.prior_high}}};
+      delta["misfit_window"] = {d.window_low, d.window_high};
+      delta["misfit_samples"] = d.window_samples;
+      delta["force_noise_sigma"] = {{"value", d.noise_sigma}, {"unit", r.force_unit}};
+      delta["misfit_scale"] = {{"value", d.misfit_scale}, {"unit", r.force_unit}};
+      delta["correlation_length_samples"] = d.correlation;
+      delta["scale_at_map"] = {{"value", d.scale_at_map},
+                               {"unit", unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit))}};
+      delta["at_prior_bound"] = d.at_prior_bound;
+      delta["posterior"] = density;
+    }
+    j["delta_x"] = delta;
   } else {
     j["delta_x"] = nullptr;
   }
   j["delta_x_direct"] = optional_json(r.delta_x_direct);
+  j["loading_phase_end"] = {{"value", r.loading_phase_end}, {"unit", r.strain_unit}};
+  const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
+    return nlohmann::json{{"white_sd", c.white}, {"walk_step_sd", c.walk}, {"unit", unit}};
+  };
+  j["uncertainty"] = {{"method", "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
+                                 "filtered curves, every replicate filtered, differentiated and fitted again"},
+                      {"replicates", r.bootstrap_replicates}, {"failed_replicates", r.bootstrap_failed},
+                      {"window", {r.bootstrap_window_low, r.bootstrap_window_high}}, {"window_unit", r.strain_unit},
+                      {"noise", {{"force", noise_json(r.noise_model.force, r.force_unit)},
+                                 {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
+                                 {"correlation", r.noise_model.correlation}}}};
   j["Gamma"] = optional_json(r.Gamma);
   j["A_r"] = optional_json(r.A_r);
   j["alpha"] = {{"from_delta_over_x_p", optional_json(r.alpha.alpha)},

@@ -1,6 +1,8 @@
 // analysis: reads a loading curve's precursor of failure (paper section 4): filters F and E_e with
-// one zero-phase filter, differentiates E_e, fits the maxima (x_c, x_p, x_m), infers δ_x = x_c − x_p
-// by Bayesian inversion, derives Γ, A_r and the FBM exponent α they imply, decides acceptance and
+// one zero-phase filter, differentiates E_e, fits the maxima (x_c, x_p, x_m) inside the loading
+// phase, takes δ_x = x_c − x_p from the fitted maxima (or, as an option, by the paper's l1 shift
+// inversion), derives Γ, A_r and the FBM exponent α they imply, gives every number an uncertainty
+// by a parametric bootstrap of the curve's own noise (bootstrap.hpp), decides acceptance and
 // classifies the breaking mechanism. The live counterpart is monitor.hpp.
 // Owns: the numerics on columns of doubles. Not: files — callers read CSV into io::CsvTable and write
 // the JSON this returns (src/cli/analyze_command.cpp).
@@ -13,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/bootstrap.hpp"
 #include "analysis/delay.hpp"
 #include "analysis/filters.hpp"
 #include "analysis/mechanism.hpp"
@@ -57,13 +60,23 @@ struct AcceptanceRules {
   double min_prominence = 0.1;       // F and ℰ peaks must rise this fraction of their height above their bases
   double competing_maximum = 0.9;    // reject if another significant force maximum reaches this fraction of F_c
   double max_relative_delay_sd = 0.25;  // reject if sd(δ_x) exceeds this fraction of x_c
+  double max_failed_replicates = 0.05;  // reject if a peak is lost in more than this share of noise replicates
+  double collapse_fraction = 0.25;      // the loading phase ends where F first falls below this fraction of F_c after x_c
 };
+
+// How δ_x is estimated. fitted_maxima: x_c − x_p of the cubic peak fits, unbiased for any curve
+// shape (the default). shift_l1: the paper's inversion F(x) ≈ c·ℰ(x − δ) (eq. 26), kept for
+// comparison; it assumes the two peaks have one shape, which only the uniform law gives.
+enum class DelayMethod { fitted_maxima, shift_l1 };
+const char* to_string(DelayMethod method);
 
 struct AnalysisOptions {
   FilterSettings filter;
   int derivative_window = 0;  // samples (odd) of the cubic Savitzky–Golay derivative; 0 = from the filter
   PeakFitOptions peak;
-  DelayOptions delay;
+  DelayMethod delay_method = DelayMethod::fitted_maxima;
+  DelayOptions delay;  // shift_l1 only
+  BootstrapOptions uncertainty;
   AcceptanceRules acceptance;
   MechanismRules mechanism;
 };
@@ -85,13 +98,21 @@ struct AnalysisResult {
   std::string source;
   ResampleReport resample;
   FilterSettings filter;           // with the automatic choices filled in
+  bool filter_on_increments = false;  // the automatic choice ran on the increments (random-walk noise)
   int derivative_window = 0;
   double force_noise = 0.0, energy_noise = 0.0;  // σ̂ of the raw curves (third differences)
   std::optional<PeakFit> force_peak, energy_peak, rate_peak;  // x_c/F_c, x_m/E_max, x_p/ℰ_max
   std::optional<Measured> x_c, F_c, x_m, E_max, x_p, Erate_max;
+  double loading_phase_end = 0.0;  // strain where the loading phase ends (AcceptanceRules::collapse_fraction)
+  DelayMethod delay_method = DelayMethod::fitted_maxima;
+  // fitted_maxima: the replicates' sampling distribution centred on the estimate; shift_l1: the posterior.
   std::optional<DelayPosterior> delay;
-  std::optional<Measured> delta_x, Gamma, A_r;  // δ_x: posterior mean ± sd
-  std::optional<Measured> delta_x_direct;        // x_c − x_p from the peak fits, for comparison
+  std::optional<Measured> delta_x, Gamma, A_r;  // δ_x: estimate ± sd
+  std::optional<Measured> delta_x_direct;        // x_c − x_p from the peak fits (= delta_x by default)
+  double delta_x_bias = 0.0;                     // bootstrap estimate of δ_x's bias (reported, not subtracted)
+  NoiseModel noise_model;                        // fitted in the bootstrap window
+  double bootstrap_window_low = 0.0, bootstrap_window_high = 0.0;
+  int bootstrap_replicates = 0, bootstrap_failed = 0;
   AlphaEstimate alpha;
   MechanismFeatures features;
   std::optional<MechanismClass> mechanism;

@@ -34,6 +34,9 @@ nlohmann::json inputs_json(const CurveFileInputs& in, const std::string& breaks_
           {"savgol_order", a.filter.savgol_order},
           {"derivative_window", a.derivative_window},
           {"peak_drop", a.peak.drop},
+          {"delay_method", to_string(a.delay_method)},
+          {"replicates", a.uncertainty.replicates},
+          {"bootstrap_seed", a.uncertainty.seed},
           {"delay_window_drop", a.delay.window_drop},
           {"grid_points", a.delay.grid_points}};
 }

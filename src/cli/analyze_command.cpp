@@ -49,8 +49,8 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   line("E_max", r.E_max);
   if (r.delay) {
     const auto& d = *r.delay;
-    fmt::print("  delta_x     {:.6g} {} (MAP {:.6g}, 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n", d.mean, r.strain_unit,
-               d.map, d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
+    fmt::print("  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n", d.mean, d.sd,
+               r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);
@@ -113,11 +113,18 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--derivative-window", o->analysis.derivative_window, "Samples of the cubic Savitzky-Golay derivative (odd; default: from the filter)");
   cmd->add_option("--peak-drop", o->analysis.peak.drop, "Peak fits use the samples within this fraction of the maximum")
       ->check(CLI::Range(0.001, 0.9));
-  cmd->add_option("--delay-window", o->analysis.delay.window_drop, "delta_x misfit over F >= (1 - this) F_c")
+  cmd->add_option("--delay-method", o->delay_method,
+                  "delta_x from the fitted maxima (fitted-maxima, default) or by the paper's l1 shift of the energy rate onto F (shift-l1)")
+      ->check(CLI::IsMember({"fitted-maxima", "shift-l1"}));
+  cmd->add_option("--replicates", o->analysis.uncertainty.replicates, "Noise replicates of the bootstrap that gives every uncertainty")
+      ->check(CLI::Range(20, 100000));
+  cmd->add_option("--seed", o->analysis.uncertainty.seed, "Seed of the bootstrap's noise replicates");
+  cmd->add_option("--delay-window", o->analysis.delay.window_drop, "shift-l1: delta_x misfit over F >= (1 - this) F_c")
       ->check(CLI::Range(0.01, 0.9));
-  cmd->add_option("--grid-points", o->analysis.delay.grid_points, "Points of the posterior grid")->check(CLI::Range(101, 100001));
+  cmd->add_option("--grid-points", o->analysis.delay.grid_points, "shift-l1: points of the posterior grid")->check(CLI::Range(101, 100001));
   cmd->callback([o, &exit_code] {
     auto& a = o->analysis;
+    a.delay_method = o->delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
     a.filter.kind = o->filter == "savgol" ? analysis::FilterKind::savitzky_golay
                     : o->filter == "none" ? analysis::FilterKind::none
                                           : analysis::FilterKind::butterworth;

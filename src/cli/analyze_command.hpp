@@ -17,6 +17,7 @@ struct AnalyzeOptions {
   bool no_breaks = false;
   analysis::ColumnChoice columns;
   std::string filter = "butterworth";
+  std::string delay_method = "fitted-maxima";
   analysis::AnalysisOptions analysis;
 };
 

@@ -19,6 +19,7 @@ enum class RandomStream : std::uint64_t {
   sample_packing = 3,
   analysis_noise = 4,   // synthetic noise in tests and calibration studies
   dem_bond_order = 5,
+  analysis_bootstrap = 6,  // noise replicates of the analysis's parametric bootstrap
 };
 
 // SplitMix64 finaliser: spreads (seed, item) over all 64 bits before seeding PCG.

@@ -187,7 +187,7 @@ std::string analysis_section(const json& analysis) {
       measured_row("F_c", "force maximum", analysis["F_c"]),
       measured_row("x_m", "strain of the elastic-energy maximum", analysis["x_m"]),
       measured_row("E_max", "elastic-energy maximum", analysis["E_max"]),
-      measured_row("δ_x", "delay x_c − x_p, posterior mean ± sd", analysis["delta_x"]),
+      measured_row("δ_x", "delay x_c − x_p (method: " + io::escape_markup(analysis["delta_x"].is_object() ? analysis["delta_x"].value("method", "") : std::string()) + ") ± sd", analysis["delta_x"]),
       measured_row("δ_x (direct)", "x_c − x_p from the two peak fits", analysis["delta_x_direct"]),
       measured_row("Γ", "(x_m − x_c)/δ_x (paper eq. 17)", analysis["Gamma"]),
       measured_row("A_r", "E_max/(x_p ℰ_max)", analysis["A_r"])};
@@ -202,8 +202,8 @@ std::string analysis_section(const json& analysis) {
       return fmt::format("[{}, {}]", number_text(delta.at(key).at(0).get<double>()),
                          number_text(delta.at(key).at(1).get<double>()));
     };
-    html += "<p>Posterior of δ<sub>x</sub>:</p>\n";
-    html += table({"MAP", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
+    html += "<p>Distribution of δ<sub>x</sub> (bootstrap replicates, or the posterior of the shift-l1 method):</p>\n";
+    html += table({"mode / estimate", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
                   {{number_text(delta["map"].get<double>()), number_text(delta["mean"].get<double>()),
                     number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()),
                     interval("ci68"), interval("ci95"), unit}},

@@ -43,7 +43,9 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   EXPECT_NEAR(j["x_c"]["value"].get<double>(), 0.5, 0.01);
   EXPECT_NEAR(j["delta_x"]["value"].get<double>(), 1.0 / 6.0, 0.005);
   EXPECT_GT(j["delta_x"]["error"].get<double>(), 0.0);
-  EXPECT_EQ(j["delta_x"]["posterior"]["delta"].size(), j["delta_x"]["posterior"]["density"].size());
+  EXPECT_EQ(j["delta_x"]["method"], "fitted-maxima");
+  EXPECT_EQ(j["delta_x"]["sampling_distribution"]["delta"].size(), j["delta_x"]["sampling_distribution"]["density"].size());
+  EXPECT_EQ(j["uncertainty"]["replicates"], 200);
   EXPECT_EQ(j["filter"]["kind"], "butterworth");
   EXPECT_TRUE(j.contains("version"));
   EXPECT_EQ(j["inputs"]["curves"], (dir / "curve.csv").string());

@@ -1,0 +1,83 @@
+// analysis/bootstrap: the uncertainty of every number the analysis reports, by a parametric
+// bootstrap of the whole peak measurement. Owns the noise model of a loading curve (white noise plus
+// a random walk, for F and E_e, correlated between the two) measured from the data, and the noise
+// replicates drawn from it. Not: the measurement itself — the caller passes it as a function, the
+// same one that measured the curve (analysis.cpp), so the replicates see exactly its filter,
+// derivative and peak fits.
+//
+// Why a bootstrap and not a likelihood: δ_x = x_c − x_p comes out of a filter, a derivative and two
+// cubic fits; the noise that moves x_p is E_e's, the one that moves x_c is F's, and on finite
+// bundles both are random walks whose low frequencies survive any low-pass. Redrawing that noise
+// onto the smoothed curve and measuring again carries all of it, and its correlation through the
+// filter, into the spread of the replicates without a closed form for any stage.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace rupture::analysis {
+
+// Noise of one curve, per sample: white noise of standard deviation `white` plus a random walk
+// whose increments have standard deviation `walk`.
+struct NoiseComponents {
+  double white = 0.0, walk = 0.0;
+};
+
+struct NoiseModel {
+  NoiseComponents force, energy;
+  double correlation = 0.0;  // of the F and E_e noise (same for both components), in [-1, 1]
+};
+
+// Fits the model to the raw curves over [low, high] from their structure function: the mean square
+// of second differences at lags L = 1..8, S(L) = 6σ_w² + 2Lσ_r² + L⁴c (white noise, random walk,
+// and the curve's own curvature c, which the fit separates instead of a filter, so that no noise is
+// filtered away before it is measured). The correlation of F with E_e is that of their lag-1
+// second differences.
+NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low, std::size_t high);
+
+// Adds one draw of the model's noise to `force` and `energy` (same length), from a generator
+// seeded by (seed, replicate): the draw depends on nothing else. The random walk starts at 0 on the
+// first sample: only its increments inside the span move a maximum.
+void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy, std::uint64_t seed,
+                     std::uint64_t replicate);
+
+// The numbers measured on one replicate.
+struct PeakValues {
+  double x_c = 0.0, F_c = 0.0, x_p = 0.0, Erate_max = 0.0, x_m = 0.0, E_max = 0.0;
+};
+
+// Measures (force, energy), each with noise added; nullopt when a peak is not found.
+using PeakMeasure = std::function<std::optional<PeakValues>(std::span<const double> force, std::span<const double> energy)>;
+
+struct BootstrapOptions {
+  int replicates = 200;
+  std::uint64_t seed = 1;
+};
+
+struct BootstrapResult {
+  std::vector<PeakValues> replicates;  // the successful ones, in replicate order
+  int attempted = 0, failed = 0;       // failed: a peak not found
+};
+
+// Measures `replicates` noisy copies of (force, energy) = the smoothed curves. Replicates are
+// independent and are measured in parallel; the result is the same for any thread count.
+BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const double> energy, const NoiseModel& model,
+                                const PeakMeasure& measure, const BootstrapOptions& options);
+
+// Summary of one bootstrapped quantity: the estimate corrected by half the bootstrap's bias
+// estimate, its sd (the replicates' spread and the other half of the bias, in quadrature), and
+// equal-tailed 68 % and 95 % intervals from the replicates' quantiles around their median (the
+// basic bootstrap, which keeps a skewed spread), widened by the same factor as the sd.
+struct BootstrapInterval {
+  double estimate = 0.0, sd = 0.0;
+  double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;
+  double bias = 0.0;    // mean of the replicates minus the uncorrected estimate
+  double spread = 0.0;  // sd of the replicates
+};
+BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates);
+
+}  // namespace rupture::analysis

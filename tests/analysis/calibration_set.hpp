@@ -1,0 +1,168 @@
+// The calibration set of the precursor analysis: ELS fiber-bundle loading curves of many strength
+// distributions, whose maxima are known exactly, sampled at a chosen number of rows, with
+// independent white noise on F and E_e or as finite bundles of N fibers. Used by the calibration
+// test (a small share) and by bench/analysis_calibration (the whole table, docs/analysis.md).
+// Per N κ = 1: F = x (1 − P(x)), E_e = x² (1 − P(x)) / 2, ℰ = x (1 − P) − x² p / 2.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <boost/math/tools/minima.hpp>
+
+#include "analysis/analysis.hpp"
+#include "core/random.hpp"
+
+namespace rupture::analysis::calibration {
+
+struct Shape {
+  std::string name;
+  std::function<double(double)> cdf, pdf;
+  double x_end;  // the curves run over [0, x_end]
+};
+
+struct Truth {
+  double x_c, x_p, x_m, F_c, E_max, Erate_max;
+  double delta() const { return x_c - x_p; }
+  double gamma() const { return (x_m - x_c) / (x_c - x_p); }
+  double energy_ratio() const { return E_max / (x_p * Erate_max); }
+};
+
+inline Shape weibull(double k) {
+  return {"weibull k=" + std::to_string(static_cast<int>(k)),
+          [k](double x) { return x <= 0 ? 0.0 : 1.0 - std::exp(-std::pow(x, k)); },
+          [k](double x) { return x <= 0 ? 0.0 : k * std::pow(x, k - 1) * std::exp(-std::pow(x, k)); },
+          std::pow(-std::log(0.002), 1.0 / k)};
+}
+
+inline Shape power_law(double alpha) {
+  char name[32];
+  std::snprintf(name, sizeof name, "powerlaw alpha=%g", alpha);
+  return {name, [alpha](double x) { return x <= 0 ? 0.0 : x >= 1 ? 1.0 : std::pow(x, 1 + alpha); },
+          [alpha](double x) { return x <= 0 || x >= 1 ? 0.0 : (1 + alpha) * std::pow(x, alpha); }, 1.0};
+}
+
+inline Shape uniform(double a, double b) {
+  char name[32];
+  std::snprintf(name, sizeof name, "uniform [%g,%g]", a, b);
+  return {name, [a, b](double x) { return std::clamp((x - a) / (b - a), 0.0, 1.0); },
+          [a, b](double x) { return x < a || x > b ? 0.0 : 1.0 / (b - a); }, b};
+}
+
+inline Shape log_normal(double sigma) {
+  char name[32];
+  std::snprintf(name, sizeof name, "lognormal sigma=%g", sigma);
+  const double s2 = std::sqrt(2.0);
+  return {name, [=](double x) { return x <= 0 ? 0.0 : 0.5 * std::erfc(-std::log(x) / (sigma * s2)); },
+          [=](double x) {
+            return x <= 0 ? 0.0
+                          : std::exp(-std::pow(std::log(x), 2) / (2 * sigma * sigma)) / (x * sigma * std::sqrt(2 * M_PI));
+          },
+          std::exp(3.0 * sigma)};
+}
+
+// 70 % Weibull(k=4, λ=1) + 30 % Weibull(k=4, λ=1.5): a shoulder on the weak side of the force peak.
+inline Shape weibull_mixture() {
+  const auto w = [](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, 4.0)); };
+  const auto p = [](double x, double lambda) {
+    const double t = x / lambda;
+    return 4.0 / lambda * t * t * t * std::exp(-std::pow(t, 4.0));
+  };
+  return {"weibull mixture", [=](double x) { return x <= 0 ? 0.0 : 0.7 * w(x, 1.0) + 0.3 * w(x, 1.5); },
+          [=](double x) { return x <= 0 ? 0.0 : 0.7 * p(x, 1.0) + 0.3 * p(x, 1.5); }, 2.2};
+}
+
+// The eight shapes of the calibration table.
+inline std::vector<Shape> shapes() {
+  return {weibull(2), weibull(3), weibull(5), power_law(-0.5), power_law(3), power_law(10), uniform(0.2, 1.0),
+          log_normal(0.3), weibull_mixture()};
+}
+
+inline double force_of(const Shape& s, double x) { return x * (1.0 - s.cdf(x)); }
+inline double energy_of(const Shape& s, double x) { return 0.5 * x * x * (1.0 - s.cdf(x)); }
+inline double rate_of(const Shape& s, double x) { return x * (1.0 - s.cdf(x)) - 0.5 * x * x * s.pdf(x); }
+
+// The maximum of f on [0, x_end]: a dense scan, then Brent's method around the best sample.
+inline double argmax(const std::function<double(double)>& f, double x_end) {
+  const int n = 20000;
+  int best = 1;
+  for (int i = 1; i < n; ++i) {
+    if (f(x_end * i / n) > f(x_end * best / n)) best = i;
+  }
+  const auto r = boost::math::tools::brent_find_minima([&](double x) { return -f(x); }, x_end * (best - 1) / n,
+                                                       x_end * (best + 1) / n, 52);
+  return r.first;
+}
+
+inline Truth truth(const Shape& s) {
+  Truth t;
+  t.x_c = argmax([&](double x) { return force_of(s, x); }, s.x_end);
+  t.x_p = argmax([&](double x) { return rate_of(s, x); }, s.x_end);
+  t.x_m = argmax([&](double x) { return energy_of(s, x); }, s.x_end);
+  t.F_c = force_of(s, t.x_c);
+  t.E_max = energy_of(s, t.x_m);
+  t.Erate_max = rate_of(s, t.x_p);
+  return t;
+}
+
+inline Curve exact_curve(const Shape& s, std::size_t rows) {
+  Curve c;
+  c.source = s.name;
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  for (std::size_t i = 0; i < rows; ++i) {
+    const double x = s.x_end * static_cast<double>(i) / static_cast<double>(rows - 1);
+    c.strain.push_back(x);
+    c.force.push_back(force_of(s, x));
+    c.energy.push_back(energy_of(s, x));
+  }
+  return c;
+}
+
+// Independent Gaussian noise of `level` times each curve's peak on F and on E_e.
+inline Curve white_noise_curve(const Shape& s, std::size_t rows, double level, std::uint64_t seed) {
+  Curve c = exact_curve(s, rows);
+  const auto t = truth(s);
+  Rng rng(seed, RandomStream::analysis_noise, 7);
+  for (std::size_t i = 0; i < rows; ++i) {
+    c.force[i] += level * t.F_c * rng.normal();
+    c.energy[i] += level * t.E_max * rng.normal();
+  }
+  c.source += " white";
+  return c;
+}
+
+// A strain-controlled bundle of `fibers` fibers with thresholds drawn from the shape (by bisection
+// on the CDF), per N κ = 1.
+inline Curve finite_bundle_curve(const Shape& s, std::size_t rows, std::size_t fibers, std::uint64_t seed) {
+  Rng rng(seed, RandomStream::analysis_noise, 8);
+  std::vector<double> thresholds(fibers);
+  for (auto& th : thresholds) {
+    const double u = rng.uniform01();
+    double lo = 0.0, hi = s.x_end * 4.0;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (s.cdf(mid) < u ? lo : hi) = mid;
+    }
+    th = 0.5 * (lo + hi);
+  }
+  std::sort(thresholds.begin(), thresholds.end());
+  Curve c;
+  c.source = s.name + " bundle";
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  std::size_t broken = 0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    const double x = s.x_end * static_cast<double>(i) / static_cast<double>(rows - 1);
+    while (broken < fibers && thresholds[broken] <= x) ++broken;
+    const double intact = 1.0 - static_cast<double>(broken) / static_cast<double>(fibers);
+    c.strain.push_back(x);
+    c.force.push_back(x * intact);
+    c.energy.push_back(0.5 * x * x * intact);
+  }
+  return c;
+}
+
+}  // namespace rupture::analysis::calibration
