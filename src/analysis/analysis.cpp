@@ -265,6 +265,65 @@ void sampling_density(const std::vector<double>& deltas, DelayPosterior& post, s
   }
 }
 
+// The derivative's window follows the filter's smoothing length, at most 101 samples: after the
+// low-pass the curve is smooth on that scale already, and the cost grows with the window.
+int derivative_window_for(const FilterSettings& filter, int requested, std::size_t n) {
+  if (requested > 0) return odd_at_least(requested);
+  double length = 7.0;
+  if (filter.kind == FilterKind::butterworth) length = 0.5 / filter.cutoff;
+  if (filter.kind == FilterKind::savitzky_golay) length = filter.savgol_window;
+  return odd_at_least(std::clamp(static_cast<int>(std::lround(length)), 7, std::clamp(static_cast<int>(n / 4), 7, 101)));
+}
+
+// One measurement with its bootstrap: the noise model over the span of the fits, the replicates,
+// and the values measured on the data.
+struct BootstrapRun {
+  PeakValues values;
+  BootstrapResult boot;
+  NoiseModel noise;
+  std::size_t low = 0, high = 0;  // bootstrap window (samples)
+};
+
+std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, std::span<const double> force,
+                                                  std::span<const double> energy, const PeakMeasurement& m,
+                                                  const PeakSearch& search, const BootstrapOptions& options) {
+  const bool have_energy_peak = m.energy.found;
+  const auto values = peak_values(m, have_energy_peak);
+  if (!values) return std::nullopt;
+  const std::size_t n = xs.size();
+  // The fits may wander by their own width in a replicate: the replicates search the fit windows
+  // widened by that much on each side (the core) and filter the core plus a padding.
+  double low_x = xs[n - 1], high_x = xs[0];
+  for (const PeakFit* fit : {&m.force, &m.energy, &m.rate}) {
+    if (!fit->found) continue;
+    const double width = fit->window_high - fit->window_low;
+    low_x = std::min(low_x, fit->window_low - width);
+    high_x = std::max(high_x, fit->window_high + width);
+  }
+  const std::size_t pad = bootstrap_padding(search, n);
+  const double step = xs[1] - xs[0];
+  const auto index_of = [&](double x) {
+    return static_cast<std::size_t>(std::clamp<double>(std::lround((x - xs[0]) / step), 0.0, static_cast<double>(n - 1)));
+  };
+  const std::size_t core_low = index_of(low_x), core_high = std::max(core_low, std::min(index_of(high_x), m.phase_end));
+  BootstrapRun run;
+  run.values = *values;
+  run.low = core_low > pad ? core_low - pad : 0;
+  run.high = std::min(n - 1, core_high + pad);
+  const std::size_t count = run.high - run.low + 1;
+  run.noise = estimate_noise(force, energy, run.low, run.high);
+  const auto window_x = xs.subspan(run.low, count);
+  PeakSearch replicate_search = search;
+  replicate_search.margin_low = core_low - run.low;
+  replicate_search.margin_high = run.high - core_high;
+  const PeakMeasure measure = [&](std::span<const double> f, std::span<const double> e) {
+    return peak_values(measure_peaks(window_x, f, e, replicate_search), have_energy_peak);
+  };
+  run.boot = bootstrap_peaks(std::span<const double>(m.filtered_force).subspan(run.low, count),
+                             std::span<const double>(m.filtered_energy).subspan(run.low, count), run.noise, measure, options);
+  return run;
+}
+
 }  // namespace
 
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const std::vector<double>& break_strains) {
@@ -327,23 +386,15 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.energy_noise = noise_from_differences(energy);
 
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
-  int window = options.derivative_window;
-  if (window <= 0) {
-    double length = 7.0;
-    if (r.filter.kind == FilterKind::butterworth) length = 0.5 / r.filter.cutoff;
-    if (r.filter.kind == FilterKind::savitzky_golay) length = r.filter.savgol_window;
-    // At most 101 samples: after the low-pass the curve is smooth on that scale already, and the
-    // cost of the derivative grows with its window.
-    window = odd_at_least(std::clamp(static_cast<int>(std::lround(length)), 7, std::clamp(static_cast<int>(n / 4), 7, 101)));
-  }
-  r.derivative_window = odd_at_least(window);
-  const PeakSearch search{r.filter, r.derivative_window, options.peak, options.acceptance.collapse_fraction};
+  const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, n), options.peak,
+                          options.acceptance.collapse_fraction};
+  r.derivative_window = search.derivative_window;
 
   // 4. The maxima, inside the loading phase.
-  auto measurement = measure_peaks(xs, force, energy, search);
-  r.filtered_force = std::move(measurement.filtered_force);
-  r.filtered_energy = std::move(measurement.filtered_energy);
-  r.energy_rate = std::move(measurement.energy_rate);
+  const auto measurement = measure_peaks(xs, force, energy, search);
+  r.filtered_force = measurement.filtered_force;
+  r.filtered_energy = measurement.filtered_energy;
+  r.energy_rate = measurement.energy_rate;
   r.force_peak = measurement.force;
   r.energy_peak = measurement.energy;
   r.rate_peak = measurement.rate;
@@ -401,37 +452,13 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // 6. Uncertainty of every number: a parametric bootstrap of the measurement (bootstrap.hpp) over
   // the span of the three fits, padded.
   const bool have_energy_peak = r.energy_peak->found;
-  const auto values = peak_values({{}, {}, {}, *r.force_peak, *r.energy_peak, *r.rate_peak, measurement.phase_end}, have_energy_peak);
-  if (values) {
-    // The fits may wander by their own width in a replicate: the replicates search the fit windows
-    // widened by that much on each side (the core) and filter the core plus a padding.
-    double low_x = xs[n - 1], high_x = xs[0];
-    for (const PeakFit* fit : {&*r.force_peak, &*r.energy_peak, &*r.rate_peak}) {
-      if (!fit->found) continue;
-      const double width = fit->window_high - fit->window_low;
-      low_x = std::min(low_x, fit->window_low - width);
-      high_x = std::max(high_x, fit->window_high + width);
-    }
-    const std::size_t pad = bootstrap_padding(search, n);
-    const auto index_of = [&](double x) {
-      return static_cast<std::size_t>(std::clamp<double>(std::lround((x - grid.x0) / grid.step), 0.0, static_cast<double>(n - 1)));
-    };
-    const std::size_t core_low = index_of(low_x), core_high = std::min(index_of(high_x), measurement.phase_end);
-    const std::size_t a = core_low > pad ? core_low - pad : 0;
-    const std::size_t b = std::min(n - 1, core_high + pad);
-    r.noise_model = estimate_noise(force, energy, a, b);
-    const std::span<const double> window_x = std::span<const double>(xs).subspan(a, b - a + 1);
-    const std::span<const double> smooth_force = std::span<const double>(r.filtered_force).subspan(a, b - a + 1);
-    const std::span<const double> smooth_energy = std::span<const double>(r.filtered_energy).subspan(a, b - a + 1);
-    PeakSearch replicate_search = search;
-    replicate_search.margin_low = core_low - a;
-    replicate_search.margin_high = b - std::max(core_high, core_low);
-    const PeakMeasure measure = [&](std::span<const double> f, std::span<const double> e) {
-      return peak_values(measure_peaks(window_x, f, e, replicate_search), have_energy_peak);
-    };
-    r.bootstrap_window_low = xs[a];
-    r.bootstrap_window_high = xs[b];
-    const auto boot = bootstrap_peaks(smooth_force, smooth_energy, r.noise_model, measure, options.uncertainty);
+  const auto run = bootstrap_measurement(xs, force, energy, measurement, search, options.uncertainty);
+  if (run) {
+    const auto* values = &run->values;
+    const auto& boot = run->boot;
+    r.noise_model = run->noise;
+    r.bootstrap_window_low = xs[run->low];
+    r.bootstrap_window_high = xs[run->high];
     r.bootstrap_replicates = boot.attempted;
     r.bootstrap_failed = boot.failed;
     const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
