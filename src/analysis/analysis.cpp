@@ -44,10 +44,17 @@ std::vector<double> scaled_column(const io::CsvTable& table, std::size_t c, doub
   return values;
 }
 
-std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string& override_unit) {
+// The column's unit: the option's, else the header's `name[unit]`; a header without one is taken as
+// dimensionless, with a warning naming the option that sets it.
+std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string& override_unit, const char* option,
+                    std::vector<std::string>& warnings) {
   if (!override_unit.empty()) return override_unit;
   const auto unit = io::column_unit(table.header[c]);
-  return unit.empty() ? "1" : unit;
+  if (!unit.empty()) return unit;
+  warnings.push_back(fmt::format("{}: column '{}' names no unit (write it as {}[unit]); taken as 1 (dimensionless): "
+                                 "give {} if it has one",
+                                 table.source, table.header[c], table.header[c], option));
+  return "1";
 }
 
 // Unit of a quotient, e.g. "mJ" / "%" -> "mJ/%"; a dimensionless denominator drops out.
@@ -114,9 +121,9 @@ CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& c
   c.strain = pick_column(table, choice.strain, {"strain"}, "--strain");
   c.force = pick_column(table, choice.force, {"force", "force_top"}, "--force");
   c.energy = pick_column(table, choice.energy, {"elastic_energy"}, "--energy");
-  c.strain_unit = unit_of(table, c.strain, choice.strain_unit);
-  c.force_unit = unit_of(table, c.force, choice.force_unit);
-  c.energy_unit = unit_of(table, c.energy, choice.energy_unit);
+  c.strain_unit = unit_of(table, c.strain, choice.strain_unit, "--strain-unit", c.warnings);
+  c.force_unit = unit_of(table, c.force, choice.force_unit, "--force-unit", c.warnings);
+  c.energy_unit = unit_of(table, c.energy, choice.energy_unit, "--energy-unit", c.warnings);
   return c;
 }
 
@@ -133,6 +140,7 @@ Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice) {
   curve.strain_column = table.header[columns.strain];
   curve.force_column = table.header[columns.force];
   curve.energy_column = table.header[columns.energy];
+  curve.warnings = columns.warnings;
   return curve;
 }
 
@@ -333,6 +341,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.force_unit = curve.force_unit;
   r.energy_unit = curve.energy_unit;
   r.delay_method = options.delay_method;
+  r.warnings = curve.warnings;
   const std::size_t needed = minimum_rows(options);
   if (curve.strain.size() < needed) {
     throw InputError(curve.source, fmt::format("{} data rows, the analysis needs at least {}", curve.strain.size(), needed),
@@ -590,6 +599,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["accepted"] = r.accepted;
   j["rejection"] = r.accepted ? nlohmann::json(nullptr) : nlohmann::json(r.rejection);
   j["units"] = {{"strain", r.strain_unit}, {"force", r.force_unit}, {"energy", r.energy_unit}};
+  j["warnings"] = r.warnings;
   j["resample"] = {{"input_rows", r.resample.input_rows},
                    {"was_sorted", r.resample.was_sorted},
                    {"duplicates_merged", r.resample.duplicates_merged},

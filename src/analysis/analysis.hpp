@@ -39,6 +39,7 @@ struct Curve {
   std::vector<double> strain, force, energy;
   std::string strain_unit, force_unit, energy_unit;
   std::string strain_column, force_column, energy_column;  // header fields used
+  std::vector<std::string> warnings;  // e.g. a column whose header names no unit
 };
 
 // Where the three columns are in a table's header, and their units after scaling. Throws
@@ -46,6 +47,7 @@ struct Curve {
 struct CurveColumns {
   std::size_t strain = 0, force = 0, energy = 0;
   std::string strain_unit, force_unit, energy_unit;
+  std::vector<std::string> warnings;
 };
 CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& choice = {});
 
@@ -119,6 +121,7 @@ struct AnalysisResult {
   int force_maxima = 0;
   bool accepted = false;
   std::string rejection;           // why not accepted
+  std::vector<std::string> warnings;  // about the input (from the Curve)
   std::string strain_unit, force_unit, energy_unit;
   std::vector<double> filtered_force, filtered_energy, energy_rate;  // on the uniform grid
   double x0 = 0.0, step = 0.0;

@@ -25,6 +25,7 @@ std::string with_error(const analysis::Measured& m) {
 }
 
 void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output) {
+  for (const auto& warning : r.warnings) fmt::print(stderr, "rupture analyze: warning: {}\n", warning);
   fmt::print("{}: {} rows", r.source, r.resample.input_rows);
   if (r.resample.resampled || !r.resample.was_sorted || r.resample.duplicates_merged > 0) {
     fmt::print(" ({}{}{} -> {} uniform rows)", r.resample.was_sorted ? "" : "sorted, ",

@@ -17,15 +17,25 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// Splits one line on commas into `fields` (views into `line`).
-void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+// Splits one line into `fields` (views into `line`): on commas, or on runs of spaces and tabs.
+void split_fields(std::string_view line, bool comma_separated, std::vector<std::string_view>& fields) {
   fields.clear();
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
+  if (comma_separated) {
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = line.find(',', start);
+      fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    return;
+  }
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    if (i > start) fields.push_back(line.substr(start, i - start));
   }
 }
 
@@ -34,6 +44,11 @@ bool parse_double(std::string_view text, double& value) {
   const auto* end = text.data() + text.size();
   const auto result = std::from_chars(text.data(), end, value);
   return result.ec == std::errc() && result.ptr == end && !text.empty();
+}
+
+// A message quotes at most 80 bytes of the input.
+std::string capped(std::string_view text) {
+  return text.size() <= 80 ? std::string(text) : std::string(text.substr(0, 77)) + "...";
 }
 
 }  // namespace
@@ -68,10 +83,43 @@ std::size_t CsvTable::require(std::string_view name) const {
 CsvTable parse_csv(std::string_view text, const std::string& source) {
   CsvTable table;
   table.source = source;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte order mark
   std::vector<std::string_view> fields;
-  std::size_t line_number = 0;
-  std::size_t pos = 0;
-  bool have_header = false;
+  std::size_t line_number = 0, pos = 0;
+  bool have_header = false, comma_separated = true;
+  std::string_view last_comment;
+  std::size_t last_comment_line = 0;
+  const auto set_header = [&](std::string_view line, std::size_t number) {
+    comma_separated = line.find(',') != std::string_view::npos;
+    split_fields(line, comma_separated, fields);
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      std::string name(fields[c]);
+      // pandas' to_csv() writes its index as a first column with an empty name.
+      if (name.empty() && c == 0 && fields.size() > 1) name = "index";
+      if (name.empty()) {
+        throw InputError(fmt::format("{}:{}", source, number), "empty column name in the header",
+                         "give every column a name, e.g. strain[%],force[N]");
+      }
+      for (std::size_t d = 0; d < table.header.size(); ++d) {
+        if (column_name(table.header[d]) == column_name(name)) {
+          throw InputError(fmt::format("{}:{}", source, number),
+                           fmt::format("columns {} and {} are both called '{}'", d + 1, c + 1, capped(column_name(name))),
+                           "give every column its own name");
+        }
+      }
+      table.header.push_back(std::move(name));
+    }
+    table.columns.resize(table.header.size());
+    have_header = true;
+  };
+  const auto all_numbers = [&](std::string_view line) {
+    split_fields(line, line.find(',') != std::string_view::npos, fields);
+    double value;
+    for (auto f : fields) {
+      if (!parse_double(f, value)) return false;
+    }
+    return !fields.empty();
+  };
   while (pos < text.size()) {
     std::size_t eol = text.find('\n', pos);
     if (eol == std::string_view::npos) eol = text.size();
@@ -80,22 +128,25 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
     ++line_number;
     if (line.empty()) continue;
     if (line.front() == '#') {
-      if (!have_header) table.comments.emplace_back(trim(line.substr(1)));
-      continue;
-    }
-    split_fields(line, fields);
-    if (!have_header) {
-      for (auto f : fields) {
-        if (f.empty()) {
-          throw InputError(fmt::format("{}:{}", source, line_number), "empty column name in the header",
-                           "give every column a name, e.g. strain[%],force[N]");
-        }
-        table.header.emplace_back(f);
+      if (!have_header) {
+        table.comments.emplace_back(trim(line.substr(1)));
+        last_comment = trim(line.substr(1));
+        last_comment_line = line_number;
       }
-      table.columns.resize(table.header.size());
-      have_header = true;
       continue;
     }
+    if (!have_header) {
+      // LAMMPS (fix ave/time, fix print) and Yade (saveDataTxt) name the columns in the last
+      // '#' line before the numbers.
+      if (all_numbers(line) && !last_comment.empty()) {
+        table.comments.pop_back();
+        set_header(last_comment, last_comment_line);
+      } else {
+        set_header(line, line_number);
+        continue;
+      }
+    }
+    split_fields(line, comma_separated, fields);
     if (fields.size() != table.header.size()) {
       throw InputError(fmt::format("{}:{}", source, line_number),
                        fmt::format("{} fields where the header has {}", fields.size(), table.header.size()),
@@ -105,7 +156,7 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
       double value;
       if (!parse_double(fields[c], value)) {
         throw InputError(fmt::format("{}:{}", source, line_number),
-                         fmt::format("column {} ('{}'): '{}' is not a number", c + 1, table.header[c], fields[c]),
+                         fmt::format("column {} ('{}'): '{}' is not a number", c + 1, capped(table.header[c]), capped(fields[c])),
                          "use plain decimal numbers such as 1.5e-3");
       }
       table.columns[c].push_back(value);

@@ -1,6 +1,10 @@
 // io/csv: numeric CSV tables, the exchange format of loading curves.
 // Convention (docs/formats.md): optional leading '#' comment lines, one header line whose fields are
 // `name[unit]` (the unit in brackets is optional), then rows of numbers separated by commas.
+// Also read, as researchers' other tools write them: columns separated by spaces or tabs (when the
+// header has no comma), the header as the last '#' line before the numbers (LAMMPS fix ave/time
+// and fix print, Yade saveDataTxt), pandas' unnamed index column (named "index"), and a UTF-8 byte
+// order mark. Two columns of one name are refused.
 // Every reader error names the file, line and column and says what to do.
 #pragma once
 

@@ -196,4 +196,28 @@ TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
 }
 
 }  // namespace
+// A LAMMPS fix ave/time file (whitespace columns, header in the last '#' line, no units): analysed
+// with the columns named, and a warning for each column that names no unit.
+TEST(AnalyzeCli, LammpsAveTimeFileIsReadAndUnitlessColumnsAreWarnedAbout) {
+  TempDir dir;
+  const auto c = testing::power_law_curve(1.0, 1001);
+  {
+    std::ofstream out(dir / "strain_force.ave");
+    out << "# Time-averaged data for fix pull\n# TimeStep v_strain v_force v_eel\n";
+    out.precision(17);
+    for (std::size_t i = 0; i < c.strain.size(); ++i) {
+      out << 100 * i << " " << c.strain[i] << " " << c.force[i] << " " << c.energy[i] << "\n";
+    }
+  }
+  const auto r = run_rupture("analyze " + quoted(dir / "strain_force.ave") +
+                             " --strain v_strain --force v_force --energy v_eel --strain-unit 1");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err.find("'v_strain' names no unit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warning: " + (dir / "strain_force.ave").string() + ": column 'v_force' names no unit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("give --force-unit"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  EXPECT_EQ(j["warnings"].size(), 2u);
+  EXPECT_NEAR(j["x_c"]["value"].get<double>(), std::pow(3.0, -0.5), 2e-3);
+}
+
 }  // namespace rupture::analysis

@@ -63,5 +63,52 @@ TEST(Csv, UnreadableFileIsAnInputError) {
   EXPECT_THROW(read_csv("/nonexistent/dir/curve.csv"), InputError);
 }
 
+// The layouts other tools write.
+TEST(Csv, LammpsFixAveTimeHeaderInTheLastCommentLine) {
+  const auto t = parse_csv(
+      "# Time-averaged data for fix strain_force\n# TimeStep v_strain v_force c_pe\n1000 0.001 2.5 0.1\n2000 0.002 "
+      "4.5e0 0.3\n",
+      "log.ave");
+  ASSERT_EQ(t.header.size(), 4u);
+  EXPECT_EQ(t.header[1], "v_strain");
+  EXPECT_EQ(t.comments.size(), 1u);
+  ASSERT_EQ(t.rows(), 2u);
+  EXPECT_DOUBLE_EQ(t.column("v_force")[1], 4.5);
+  EXPECT_EQ(t.line_of_row[0], 3u);
+}
+
+TEST(Csv, YadeSaveDataTxtTabsAndPandasIndexAndByteOrderMark) {
+  const auto yade = parse_csv("# i\tstrain\tforce\n0\t0\t0\n1\t0.1\t2\n", "yade.txt");
+  EXPECT_EQ(yade.header, (std::vector<std::string>{"i", "strain", "force"}));
+  EXPECT_DOUBLE_EQ(yade.column("force")[1], 2.0);
+  const auto pandas = parse_csv(",strain,force\n0,0.0,0.0\n1,0.1,2.0\n", "df.csv");
+  EXPECT_EQ(pandas.header, (std::vector<std::string>{"index", "strain", "force"}));
+  const auto bom = parse_csv("\xEF\xBB\xBFstrain[%],force[N]\n0,1\n", "excel.csv");
+  EXPECT_EQ(column_name(bom.header[0]), "strain");
+  EXPECT_EQ(column_unit(bom.header[0]), "%");
+  const auto spaces = parse_csv("strain force\n0   1\n0.5\t2\n", "plain.dat");
+  EXPECT_DOUBLE_EQ(spaces.column("force")[1], 2.0);
+}
+
+TEST(Csv, TwoColumnsOfOneNameAreRefused) {
+  try {
+    parse_csv("strain[%],force[N],strain[1]\n0,1,0\n", "dup.csv");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("dup.csv:1"));
+    EXPECT_THAT(e.what(), HasSubstr("columns 1 and 3 are both called 'strain'"));
+  }
+}
+
+TEST(Csv, QuotedInputInMessagesIsCapped) {
+  try {
+    parse_csv("x,y\n1," + std::string(500, 'z') + "\n", "long.csv");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_LT(std::string(e.what()).size(), 300u) << e.what();
+    EXPECT_THAT(e.what(), HasSubstr("zzz..."));
+  }
+}
+
 }  // namespace
 }  // namespace rupture::io
