@@ -359,6 +359,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // 1. Uniform grid.
   const std::span<const double> columns[] = {curve.force, curve.energy};
   UniformCurves grid = resample_uniform(curve.strain, columns, r.resample);
+  average_blocks(grid, options.max_samples, r.resample);
   if (grid.size() < needed) {
     throw InputError(curve.source, fmt::format("{} distinct strains, the analysis needs at least {}", grid.size(), needed),
                      "give a curve with more distinct strain values");
@@ -606,6 +607,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
                    {"was_uniform", r.resample.was_uniform},
                    {"resampled", r.resample.resampled},
                    {"output_rows", r.resample.output_rows},
+                   {"block_average", r.resample.block_average},
                    {"step", {{"value", r.resample.step}, {"unit", r.strain_unit}}}};
   nlohmann::json filter = {{"kind", to_string(r.filter.kind)}, {"applied_to", {"force", "elastic_energy"}},
                            {"zero_phase", true}, {"discrepancy", r.filter.discrepancy}};

@@ -73,6 +73,7 @@ enum class DelayMethod { fitted_maxima, shift_l1 };
 const char* to_string(DelayMethod method);
 
 struct AnalysisOptions {
+  std::size_t max_samples = 20000;  // denser curves are block-averaged to this many samples (0 = never)
   FilterSettings filter;
   int derivative_window = 0;  // samples (odd) of the cubic Savitzky–Golay derivative; 0 = from the filter
   PeakFitOptions peak;

@@ -64,4 +64,24 @@ UniformCurves resample_uniform(std::span<const double> strain, std::span<const s
   return out;
 }
 
+void average_blocks(UniformCurves& curves, std::size_t max_samples, ResampleReport& report) {
+  const std::size_t n = curves.size();
+  if (max_samples < 2 || n <= max_samples) return;
+  const std::size_t k = (n + max_samples - 1) / max_samples;
+  const std::size_t m = n / k;
+  for (auto& y : curves.y) {
+    for (std::size_t b = 0; b < m; ++b) {
+      double sum = 0.0;
+      for (std::size_t j = b * k; j < (b + 1) * k; ++j) sum += y[j];
+      y[b] = sum / static_cast<double>(k);
+    }
+    y.resize(m);
+  }
+  curves.x0 += 0.5 * static_cast<double>(k - 1) * curves.step;
+  curves.step *= static_cast<double>(k);
+  report.block_average = k;
+  report.output_rows = m;
+  report.step = curves.step;
+}
+
 }  // namespace rupture::analysis

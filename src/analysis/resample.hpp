@@ -15,6 +15,7 @@ struct ResampleReport {
   bool was_uniform = true;          // spacing equal to within 1e-6 of the mean step
   bool resampled = false;           // linear interpolation onto a uniform grid was needed
   std::size_t output_rows = 0;
+  std::size_t block_average = 1;    // samples averaged into one (average_blocks)
   double step = 0.0;                // grid spacing, strain units
 };
 
@@ -31,5 +32,11 @@ struct UniformCurves {
 // strains. `curves` are columns aligned with `strain`. Needs at least two distinct strains.
 UniformCurves resample_uniform(std::span<const double> strain, std::span<const std::span<const double>> curves,
                                ResampleReport& report);
+
+// Averages blocks of k consecutive samples, k the smallest that leaves at most `max_samples`
+// (a trailing partial block is dropped): a curve sampled far more densely than its features needs
+// no more samples than that, and every later stage (filter choice, bootstrap) scales with them.
+// White noise shrinks by √k in the average, and the noise model measures it there.
+void average_blocks(UniformCurves& curves, std::size_t max_samples, ResampleReport& report);
 
 }  // namespace rupture::analysis

@@ -27,10 +27,12 @@ std::string with_error(const analysis::Measured& m) {
 void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output) {
   for (const auto& warning : r.warnings) fmt::print(stderr, "rupture analyze: warning: {}\n", warning);
   fmt::print("{}: {} rows", r.source, r.resample.input_rows);
-  if (r.resample.resampled || !r.resample.was_sorted || r.resample.duplicates_merged > 0) {
-    fmt::print(" ({}{}{} -> {} uniform rows)", r.resample.was_sorted ? "" : "sorted, ",
+  if (r.resample.resampled || r.resample.duplicates_merged > 0 || r.resample.block_average > 1) {
+    fmt::print(" ({}{}{} -> {} uniform rows)",
                r.resample.duplicates_merged > 0 ? fmt::format("{} duplicates merged, ", r.resample.duplicates_merged) : "",
-               r.resample.resampled ? "resampled" : "uniform", r.resample.output_rows);
+               r.resample.resampled ? "resampled" : "uniform",
+               r.resample.block_average > 1 ? fmt::format(", averaged in blocks of {}", r.resample.block_average) : "",
+               r.resample.output_rows);
   }
   fmt::print("\n  filter      {}", analysis::to_string(r.filter.kind));
   if (r.filter.kind == analysis::FilterKind::butterworth) {
@@ -117,6 +119,8 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--delay-method", o->delay_method,
                   "delta_x from the fitted maxima (fitted-maxima, default) or by the paper's l1 shift of the energy rate onto F (shift-l1)")
       ->check(CLI::IsMember({"fitted-maxima", "shift-l1"}));
+  cmd->add_option("--max-samples", o->analysis.max_samples,
+                  "Denser curves are averaged in blocks down to this many samples (0: never)");
   cmd->add_option("--replicates", o->analysis.uncertainty.replicates, "Noise replicates of the bootstrap that gives every uncertainty")
       ->check(CLI::Range(20, 100000));
   cmd->add_option("--seed", o->analysis.uncertainty.seed, "Seed of the bootstrap's noise replicates");
