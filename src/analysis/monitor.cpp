@@ -104,6 +104,9 @@ std::optional<Warning> Monitor::add_point(double strain, double force, double en
   const double rate_low = fit.value - options_.sigmas * fit.value_error;
   const double rate_high = fit.value + options_.sigmas * fit.value_error;
   warning.E_max = {ratio_low * x_p_low * rate_low, ratio_high * x_p_high * rate_high};
+  warning.in_time = strain < warning.x_c.low;
+  const double lag_rows = static_cast<double>(w / 2 + options_.confirm);
+  warning.max_row_spacing = std::max(0.0, warning.x_c.low - warning.x_p) / lag_rows;
   warning_ = warning;
   return warning;
 }
@@ -136,7 +139,9 @@ nlohmann::json to_json(const MonitorSummary& s) {
                     {"x_p", {{"value", w.x_p}, {"error", w.x_p_error}}},
                     {"Erate_max", {{"value", w.Erate_max}, {"error", w.Erate_max_error}}},
                     {"x_c_predicted", {w.x_c.low, w.x_c.high}},
-                    {"E_max_predicted", {w.E_max.low, w.E_max.high}}};
+                    {"E_max_predicted", {w.E_max.low, w.E_max.high}},
+                    {"in_time", w.in_time},
+                    {"max_row_spacing_for_a_timely_warning", w.max_row_spacing}};
   } else {
     j["warning"] = nullptr;
   }

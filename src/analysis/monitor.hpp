@@ -47,6 +47,11 @@ struct Warning {
   double Erate_max = 0.0, Erate_max_error = 0.0;  // ℰ_max (energy / strain unit)
   Interval x_c;                // predicted critical strain
   Interval E_max;              // predicted maximum elastic energy (energy released at failure)
+  // The warning comes (window/2 + confirm) rows after x_p. It is in time when it comes before the
+  // earliest predicted x_c; otherwise the rows are too far apart, and rows at most
+  // `max_row_spacing` apart (strain units) would have warned in time.
+  bool in_time = true;
+  double max_row_spacing = 0.0;
 };
 
 struct MonitorSummary {

@@ -176,6 +176,11 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
                    "still rises; predicted x_c in {} {}, E_max in {} {} (FBM, 0 <= alpha <= 5)\n",
                    w->strain, columns.strain_unit, w->x_p, w->x_p_error, columns.strain_unit, interval(w->x_c),
                    columns.strain_unit, interval(w->E_max), columns.energy_unit);
+        if (!w->in_time) {
+          fmt::print("the rows are too far apart to warn in time: this warning comes after the earliest predicted x_c; "
+                     "rows at most {:.3g} {} apart would have warned before it\n",
+                     w->max_row_spacing, columns.strain_unit);
+        }
         std::fflush(stdout);
       }
     }

@@ -385,12 +385,17 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     ++loop.curves_rows;
     loop.last_recorded = system.steps_done();
     if (config.monitor) {
-      if (const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic))
+      if (const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic)) {
         fmt::print(
             "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the "
             "force "
             "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
             warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
+        if (!warning->in_time)
+          fmt::print("monitor: the rows are too far apart to warn in time (the warning comes after the earliest predicted "
+                   "x_c); output.interval giving rows at most {:.3g} % apart would have warned before it\n",
+                     warning->max_row_spacing);
+      }
     }
     loop.max_work = std::max(loop.max_work, std::abs(w));
     const double error = std::abs(w - total);

@@ -38,6 +38,7 @@ TEST(Monitor, WarnsBeforeCriticalStrainOnPowerLawBundles) {
     EXPECT_NEAR(s.warning->x_p, expected.x_p, 1e-3) << alpha;
     EXPECT_TRUE(s.warning->x_c.contains(expected.x_c)) << alpha;
     EXPECT_TRUE(s.warning->E_max.contains(expected.E_max)) << alpha;
+    EXPECT_TRUE(s.warning->in_time) << alpha;
     ASSERT_TRUE(s.x_c && s.lead);
     EXPECT_NEAR(*s.x_c, expected.x_c, 1e-3) << alpha;
     EXPECT_GT(*s.lead, 0.0) << alpha;
@@ -68,6 +69,24 @@ TEST(Monitor, StaysSilentWhenTheForcePeaksFirst) {
   const auto s = replay(c);
   EXPECT_FALSE(s.warning);
   EXPECT_TRUE(s.force_peaked_before_warning);
+}
+
+// A coarse curve (rows 1 % of the strain apart): the detection lag of window/2 + confirm rows
+// carries the warning past the earliest predicted x_c. The monitor says so, and how close the rows
+// would have had to be; on that spacing it does warn in time.
+TEST(Monitor, SaysWhenTheRowsAreTooCoarseToWarnInTime) {
+  const double alpha = 2.0;
+  const auto coarse = replay(testing::power_law_curve(alpha, 101));
+  ASSERT_TRUE(coarse.warning);
+  EXPECT_FALSE(coarse.warning->in_time);
+  EXPECT_GE(coarse.warning->strain, coarse.warning->x_c.low);
+  const double spacing = coarse.warning->max_row_spacing;
+  ASSERT_GT(spacing, 0.0);
+  EXPECT_LT(spacing, 0.01);
+  const auto fine = replay(testing::power_law_curve(alpha, static_cast<std::size_t>(1.0 / (0.5 * spacing)) + 1));
+  ASSERT_TRUE(fine.warning);
+  EXPECT_TRUE(fine.warning->in_time);
+  EXPECT_LT(fine.warning->strain, fbm::power_law::maxima(alpha).x_c);
 }
 
 }  // namespace
