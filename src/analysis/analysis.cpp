@@ -205,9 +205,15 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   // E_e often peaks right at the collapse: its fit may reach min_side samples past the phase.
   const std::size_t energy_end = std::min(last, m.phase_end + search.peak.min_side);
   m.energy = fit_peak(inner(xs, energy_end), inner(m.filtered_energy, energy_end), 0.0, 1.0, search.peak);
-  m.rate = fit_peak(inner(xs, m.phase_end), inner(m.energy_rate, m.phase_end), 0.0, 1.0, search.peak);
+  // The derivative's first and last half-windows are one-sided polynomial extrapolations, whose
+  // noise is several times the interior's: on a noisy curve they would win the maximum.
+  const auto half = static_cast<std::size_t>(search.derivative_window / 2);
+  const std::size_t rate_first = std::max(first, std::min(half, m.phase_end));
+  const std::size_t rate_end = std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
+  m.rate = fit_peak(xs.subspan(rate_first, rate_end - rate_first + 1),
+                    std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1), 0.0, 1.0, search.peak);
   m.energy.index += first;
-  m.rate.index += first;
+  m.rate.index += rate_first;
   return m;
 }
 

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# δ_x's reported uncertainty against its spread on real DEM runs (docs/analysis.md): the default
+# study's reduced tissue run with curve rows every 50, 100 and 200 steps (sample seed 1), and with
+# sample seeds 1-5 (rows every 100 steps); each curve analysed with default options.
+# Usage: bench/dem_delta_spread.sh [RUPTURE] [OUT]   (default build/release/bin/rupture, /tmp/dem-delta)
+set -euo pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+rupture=${1:-$top/build/release/bin/rupture}
+out=${2:-/tmp/dem-delta}
+mkdir -p "$out"
+cat > "$out/base.toml" <<'TOML'
+[sample]
+preset = "tissue-small"
+seed = 1
+density = 2.5e-4
+[bonds]
+stiffness = 1e3
+break_distance = 0.005
+[loading]
+speed = 50.0
+ramp_steps = 10000
+[stop]
+extra_strain = 0.3
+max_strain = 1.5
+[output]
+interval = 200
+[run]
+threads = 2
+TOML
+printf '| sample seed | rows every (steps) | rows | x_p [%%] | x_c [%%] | δ_x [%%] | sd [%%] | 95 %% interval [%%] | accepted |\n|---|---|---|---|---|---|---|---|---|\n'
+run_one() {
+  local seed=$1 interval=$2 dir="$out/seed$1-every$2"
+  if [ ! -f "$dir/curves.csv" ] || [ ! -f "$dir/run.json" ] || ! grep -q '"finished"' "$dir/run.json"; then
+    rm -rf "$dir"
+    "$rupture" run "$out/base.toml" --set sample.seed="$seed" --set output.interval="$interval" -o "$dir" > "$dir.log" 2>&1 || true
+  fi
+  "$rupture" analyze "$dir/curves.csv" -o "$dir/analysis.json" > /dev/null 2>&1 || true
+  python3 - "$dir/analysis.json" "$seed" "$interval" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); d = j.get("delta_x") or {}
+f = lambda k: (j.get(k) or {}).get("value", float("nan"))
+print("| %s | %s | %d | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f] | %s |" % (sys.argv[2], sys.argv[3], j["resample"]["input_rows"],
+      f("x_p"), f("x_c"), d.get("value", float("nan")), d.get("sd", float("nan")),
+      *(d.get("ci95") or [float("nan")] * 2), "yes" if j["accepted"] else "no: " + j["rejection"]))
+PY
+}
+for interval in 50 100 200; do run_one 1 "$interval"; done
+for seed in 2 3 4 5; do run_one "$seed" 100; done
