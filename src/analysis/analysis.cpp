@@ -596,6 +596,12 @@ nlohmann::json peak_json(const std::optional<PeakFit>& fit, const std::string& u
 
 }  // namespace
 
+std::string precursor_order(double ci95_low, double ci95_high) {
+  if (ci95_low > 0.0) return "x_p comes before x_c (delta_x > 0 at 95 %)";
+  if (ci95_high < 0.0) return "x_p comes after x_c (delta_x < 0 at 95 %)";
+  return "the order of x_p and x_c is not resolved (the 95 % interval of delta_x includes 0)";
+}
+
 const char* to_string(DelayMethod method) {
   return method == DelayMethod::fitted_maxima ? "fitted-maxima" : "shift-l1";
 }

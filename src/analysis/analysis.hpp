@@ -131,6 +131,10 @@ struct AnalysisResult {
 // Fewest rows the pipeline accepts with these options.
 std::size_t minimum_rows(const AnalysisOptions& options);
 
+// What δ_x's 95 % interval says of the order of the two maxima, in words for summaries: the
+// energy-rate maximum came before the force maximum, after it, or the data cannot tell.
+std::string precursor_order(double ci95_low, double ci95_high);
+
 // Runs the whole pipeline. `break_strains` may be empty. Throws InputError when the curve has
 // fewer distinct strains than minimum_rows() (naming the source). Rejections are not errors: they
 // come back with accepted = false and the reason.

@@ -117,9 +117,10 @@ void add_study_command(CLI::App& app, int& exit_code) {
     const std::string html = fs::absolute(report.html).lexically_normal().string();
     if (r.x_p && r.x_c && r.delay) {
       fmt::print(
-          "report: {}; precursor: x_p = {:.3g} % before x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
-          "[{:.2g}, {:.2g}] %){}\n",
+          "report: {}; precursor: x_p = {:.3g} %, x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
+          "[{:.2g}, {:.2g}] %): {}{}\n",
           html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
+          analysis::precursor_order(r.delay->ci95_low, r.delay->ci95_high),
           r.accepted ? "" : "; analysis rejected: " + r.rejection);
     } else {
       fmt::print("report: {}; no precursor found ({})\n", html, r.accepted ? "no peak" : r.rejection);

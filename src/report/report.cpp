@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "figures/figures.hpp"
 #include "io/atomic_file.hpp"
+#include "analysis/analysis.hpp"
 #include "io/markup.hpp"
 #include "rupture/version.hpp"
 #include "scan/results.hpp"
@@ -157,11 +158,12 @@ std::string run_summary(const json& analysis) {
     const std::string unit = io::escape_markup(delta.value("unit", ""));
     const auto ci95 = delta.at("ci95");
     text = fmt::format(
-        "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, before the force peaks at "
-        "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}).",
+        "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, the force at "
+        "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}): {}.",
         number_text(x_p["value"].get<double>()), number_text(x_c["value"].get<double>()),
         number_text(delta["mean"].get<double>()), number_text(delta["sd"].get<double>()),
-        number_text(ci95.at(0).get<double>()), number_text(ci95.at(1).get<double>()), fmt::arg("u", unit));
+        number_text(ci95.at(0).get<double>()), number_text(ci95.at(1).get<double>()),
+        io::escape_markup(analysis::precursor_order(ci95.at(0).get<double>(), ci95.at(1).get<double>())), fmt::arg("u", unit));
   } else {
     text = "No precursor found: the analysis did not locate both maxima.";
   }

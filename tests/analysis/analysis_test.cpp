@@ -320,5 +320,11 @@ TEST(NoiseModel, SeparatesWhiteNoiseFromARandomWalk) {
   EXPECT_NEAR(model.correlation, 0.0, 0.1);
 }
 
+TEST(PrecursorOrder, SaysWhatTheIntervalResolves) {
+  EXPECT_EQ(precursor_order(0.01, 0.03), "x_p comes before x_c (delta_x > 0 at 95 %)");
+  EXPECT_EQ(precursor_order(-0.03, -0.01), "x_p comes after x_c (delta_x < 0 at 95 %)");
+  EXPECT_EQ(precursor_order(-0.01, 0.03), "the order of x_p and x_c is not resolved (the 95 % interval of delta_x includes 0)");
+}
+
 }  // namespace
 }  // namespace rupture::analysis
