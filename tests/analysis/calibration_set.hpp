@@ -104,6 +104,23 @@ inline std::vector<Shape> second_held_out_shapes() {
   return {weibull(1.5), power_law(6), uniform(0.5, 1.0), log_normal(0.5), gamma_shape(4), weibull_mixture_narrow()};
 }
 
+// 60 % Weibull(k=3, λ=1) + 40 % Weibull(k=3, λ=2).
+inline Shape weibull_mixture_wide() {
+  const auto w = [](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, 3.0)); };
+  const auto p = [](double x, double lambda) {
+    const double t = x / lambda;
+    return 3.0 / lambda * t * t * std::exp(-std::pow(t, 3.0));
+  };
+  return {"weibull mixture k=3", [=](double x) { return x <= 0 ? 0.0 : 0.6 * w(x, 1.0) + 0.4 * w(x, 2.0); },
+          [=](double x) { return x <= 0 ? 0.0 : 0.6 * p(x, 1.0) + 0.4 * p(x, 2.0); }, 3.5};
+}
+
+// A third held-out set, fixed before the smoothing-sensitivity term was tried
+// (bench/analysis_calibration held-out-3).
+inline std::vector<Shape> third_held_out_shapes() {
+  return {weibull(2.5), power_law(1), uniform(0.1, 0.9), log_normal(0.2), gamma_shape(8), weibull_mixture_wide()};
+}
+
 // The nine shapes of the calibration table.
 inline std::vector<Shape> shapes() {
   return {weibull(2), weibull(3), weibull(5), power_law(-0.5), power_law(3), power_law(10), uniform(0.2, 1.0),
