@@ -480,9 +480,38 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
     const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
       return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
     };
-    const auto x_c = interval(values->x_c, [](const PeakValues& v) { return v.x_c; });
+    // Smoothing sensitivity: the same measurement with a weaker filter (cutoff ×√2, derivative window
+    // following). Replicates of an already smoothed curve cannot show how far the smoothing itself
+    // moved a maximum; the change under a weaker filter can, and is added as a systematic error.
+    PeakSearch weaker = search;
+    double shift_c = 0.0, shift_p = 0.0, shift_delta = 0.0;
+    if (weaker.filter.kind == FilterKind::butterworth) {
+      weaker.filter.cutoff = std::min(0.95, std::sqrt(2.0) * search.filter.cutoff);
+      weaker.derivative_window = derivative_window_for(weaker.filter, options.derivative_window, n);
+      if (const auto other = peak_values(measure_peaks(xs, force, energy, weaker), false)) {
+        shift_c = other->x_c - values->x_c;
+        shift_p = other->x_p - values->x_p;
+        shift_delta = shift_c - shift_p;
+      }
+    }
+    const auto with_systematic = [](BootstrapInterval i, double shift) {
+      const double sd = std::hypot(i.sd, shift);
+      const double widen = i.sd > 0.0 ? sd / i.sd : 1.0;
+      const auto stretch = [&](double bound) { return i.estimate + widen * (bound - i.estimate); };
+      i.ci68_low = stretch(i.ci68_low);
+      i.ci68_high = stretch(i.ci68_high);
+      i.ci95_low = stretch(i.ci95_low);
+      i.ci95_high = stretch(i.ci95_high);
+      if (i.sd == 0.0) {
+        i.ci68_low -= std::abs(shift), i.ci68_high += std::abs(shift);
+        i.ci95_low -= 1.96 * std::abs(shift), i.ci95_high += 1.96 * std::abs(shift);
+      }
+      i.sd = sd;
+      return i;
+    };
+    const auto x_c = with_systematic(interval(values->x_c, [](const PeakValues& v) { return v.x_c; }), shift_c);
     const auto F_c = interval(values->F_c, [](const PeakValues& v) { return v.F_c; });
-    const auto x_p = interval(values->x_p, [](const PeakValues& v) { return v.x_p; });
+    const auto x_p = with_systematic(interval(values->x_p, [](const PeakValues& v) { return v.x_p; }), shift_p);
     const auto Erate = interval(values->Erate_max, [](const PeakValues& v) { return v.Erate_max; });
     const auto x_m = interval(values->x_m, [](const PeakValues& v) { return v.x_m; });
     const auto E_max = interval(values->E_max, [](const PeakValues& v) { return v.E_max; });
@@ -494,7 +523,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       r.x_m = measured(x_m.estimate, x_m.sd, curve.strain_unit);
       r.E_max = measured(E_max.estimate, E_max.sd, curve.energy_unit);
     }
-    const auto direct = interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; });
+    const auto direct =
+        with_systematic(interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }), shift_delta);
     r.delta_x_direct = measured(direct.estimate, direct.sd, curve.strain_unit);
 
     // 7. δ_x by the chosen method, then Γ, A_r, α.
