@@ -17,8 +17,11 @@
 
 #include "analysis/analysis.hpp"
 #include "core/random.hpp"
+#include "synthetic_curves.hpp"
 
 namespace rupture::analysis::calibration {
+
+using testing::bundle_curve;
 
 struct Shape {
   std::string name;
@@ -195,19 +198,7 @@ inline Curve finite_bundle_curve(const Shape& s, std::size_t rows, std::size_t f
     th = 0.5 * (lo + hi);
   }
   std::sort(thresholds.begin(), thresholds.end());
-  Curve c;
-  c.source = s.name + " bundle";
-  c.strain_unit = c.force_unit = c.energy_unit = "1";
-  std::size_t broken = 0;
-  for (std::size_t i = 0; i < rows; ++i) {
-    const double x = s.x_end * static_cast<double>(i) / static_cast<double>(rows - 1);
-    while (broken < fibers && thresholds[broken] <= x) ++broken;
-    const double intact = 1.0 - static_cast<double>(broken) / static_cast<double>(fibers);
-    c.strain.push_back(x);
-    c.force.push_back(x * intact);
-    c.energy.push_back(0.5 * x * x * intact);
-  }
-  return c;
+  return bundle_curve(thresholds, rows, s.x_end, s.name + " bundle");
 }
 
 }  // namespace rupture::analysis::calibration

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/analysis.hpp"
@@ -27,6 +29,25 @@ inline Curve power_law_curve(double alpha, std::size_t n, double x_max = 1.0) {
   return c;
 }
 
+// The strain-controlled curve of a bundle whose fibers break at `sorted_thresholds`, per N κ = 1,
+// sampled at `rows` strains on [0, x_end].
+inline Curve bundle_curve(const std::vector<double>& sorted_thresholds, std::size_t rows, double x_end, std::string source) {
+  Curve c;
+  c.source = std::move(source);
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  const std::size_t fibers = sorted_thresholds.size();
+  std::size_t broken = 0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    const double x = x_end * static_cast<double>(i) / static_cast<double>(rows - 1);
+    while (broken < fibers && sorted_thresholds[broken] <= x) ++broken;
+    const double intact = 1.0 - static_cast<double>(broken) / static_cast<double>(fibers);
+    c.strain.push_back(x);
+    c.force.push_back(x * intact);
+    c.energy.push_back(0.5 * x * x * intact);
+  }
+  return c;
+}
+
 // Strain-controlled finite bundle of `fibers` with power-law thresholds P(x) = x^(1+α) on [0, 1]
 // (α = 0: uniform), per N κ = 1, sampled at n strains on [0, 1].
 inline Curve finite_bundle(double alpha, std::size_t fibers, std::size_t n, std::uint64_t seed) {
@@ -34,19 +55,7 @@ inline Curve finite_bundle(double alpha, std::size_t fibers, std::size_t n, std:
   std::vector<double> thresholds(fibers);
   for (auto& t : thresholds) t = std::pow(rng.uniform01(), 1.0 / (1.0 + alpha));
   std::sort(thresholds.begin(), thresholds.end());
-  Curve c;
-  c.source = "finite_bundle";
-  c.strain_unit = c.force_unit = c.energy_unit = "1";
-  std::size_t broken = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x = static_cast<double>(i) / static_cast<double>(n - 1);
-    while (broken < fibers && thresholds[broken] <= x) ++broken;
-    const double intact = 1.0 - static_cast<double>(broken) / static_cast<double>(fibers);
-    c.strain.push_back(x);
-    c.force.push_back(x * intact);
-    c.energy.push_back(0.5 * x * x * intact);
-  }
-  return c;
+  return bundle_curve(thresholds, n, 1.0, "finite_bundle");
 }
 
 inline void add_noise(Curve& c, double force_sigma, double energy_sigma, std::uint64_t seed) {
