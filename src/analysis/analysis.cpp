@@ -338,6 +338,43 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
   return run;
 }
 
+// Smoothing sensitivity: the same measurement with a weaker filter (cutoff ×√2, the derivative
+// window following). Replicates of an already smoothed curve cannot show how far the smoothing
+// itself moved a maximum; the shift under a weaker filter can (x_c and x_p; zero when it cannot be
+// measured).
+PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> force, std::span<const double> energy,
+                           const PeakSearch& search, const PeakValues& values, int requested_derivative_window) {
+  PeakValues shift{};
+  if (search.filter.kind != FilterKind::butterworth) return shift;
+  PeakSearch weaker = search;
+  weaker.filter.cutoff = std::min(0.95, std::sqrt(2.0) * search.filter.cutoff);
+  weaker.derivative_window = derivative_window_for(weaker.filter, requested_derivative_window, xs.size());
+  if (const auto other = peak_values(measure_peaks(xs, force, energy, weaker), false)) {
+    shift.x_c = other->x_c - values.x_c;
+    shift.x_p = other->x_p - values.x_p;
+  }
+  return shift;
+}
+
+// δ_x of the fitted maxima as a DelayPosterior: the interval's numbers, and the replicates' density
+// centred on the estimate and widened as the interval was.
+DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vector<double> deltas) {
+  DelayPosterior delay;
+  delay.mean = delay.map = delay.median = direct.estimate;
+  delay.sd = direct.sd;
+  delay.ci68_low = direct.ci68_low;
+  delay.ci68_high = direct.ci68_high;
+  delay.ci95_low = direct.ci95_low;
+  delay.ci95_high = direct.ci95_high;
+  std::vector<double> sorted = deltas;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+  const double widen = direct.spread > 0.0 ? direct.sd / direct.spread : 1.0;
+  for (auto& d : deltas) d = direct.estimate + widen * (d - median);
+  sampling_density(deltas, delay);
+  return delay;
+}
+
 }  // namespace
 
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const std::vector<double>& break_strains) {
@@ -480,38 +517,10 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
     const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
       return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
     };
-    // Smoothing sensitivity: the same measurement with a weaker filter (cutoff ×√2, derivative window
-    // following). Replicates of an already smoothed curve cannot show how far the smoothing itself
-    // moved a maximum; the change under a weaker filter can, and is added as a systematic error.
-    PeakSearch weaker = search;
-    double shift_c = 0.0, shift_p = 0.0, shift_delta = 0.0;
-    if (weaker.filter.kind == FilterKind::butterworth) {
-      weaker.filter.cutoff = std::min(0.95, std::sqrt(2.0) * search.filter.cutoff);
-      weaker.derivative_window = derivative_window_for(weaker.filter, options.derivative_window, n);
-      if (const auto other = peak_values(measure_peaks(xs, force, energy, weaker), false)) {
-        shift_c = other->x_c - values->x_c;
-        shift_p = other->x_p - values->x_p;
-        shift_delta = shift_c - shift_p;
-      }
-    }
-    const auto with_systematic = [](BootstrapInterval i, double shift) {
-      const double sd = std::hypot(i.sd, shift);
-      const double widen = i.sd > 0.0 ? sd / i.sd : 1.0;
-      const auto stretch = [&](double bound) { return i.estimate + widen * (bound - i.estimate); };
-      i.ci68_low = stretch(i.ci68_low);
-      i.ci68_high = stretch(i.ci68_high);
-      i.ci95_low = stretch(i.ci95_low);
-      i.ci95_high = stretch(i.ci95_high);
-      if (i.sd == 0.0) {
-        i.ci68_low -= std::abs(shift), i.ci68_high += std::abs(shift);
-        i.ci95_low -= 1.96 * std::abs(shift), i.ci95_high += 1.96 * std::abs(shift);
-      }
-      i.sd = sd;
-      return i;
-    };
-    const auto x_c = with_systematic(interval(values->x_c, [](const PeakValues& v) { return v.x_c; }), shift_c);
+    const auto shift = smoothing_shift(xs, force, energy, search, *values, options.derivative_window);
+    const auto x_c = add_systematic(interval(values->x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c);
     const auto F_c = interval(values->F_c, [](const PeakValues& v) { return v.F_c; });
-    const auto x_p = with_systematic(interval(values->x_p, [](const PeakValues& v) { return v.x_p; }), shift_p);
+    const auto x_p = add_systematic(interval(values->x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p);
     const auto Erate = interval(values->Erate_max, [](const PeakValues& v) { return v.Erate_max; });
     const auto x_m = interval(values->x_m, [](const PeakValues& v) { return v.x_m; });
     const auto E_max = interval(values->E_max, [](const PeakValues& v) { return v.E_max; });
@@ -524,25 +533,13 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       r.E_max = measured(E_max.estimate, E_max.sd, curve.energy_unit);
     }
     const auto direct =
-        with_systematic(interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }), shift_delta);
+        add_systematic(interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }), shift.x_c - shift.x_p);
     r.delta_x_direct = measured(direct.estimate, direct.sd, curve.strain_unit);
 
     // 7. δ_x by the chosen method, then Γ, A_r, α.
     DelayPosterior delay;
     if (options.delay_method == DelayMethod::fitted_maxima) {
-      delay.mean = delay.map = delay.median = direct.estimate;
-      delay.sd = direct.sd;
-      delay.ci68_low = direct.ci68_low;
-      delay.ci68_high = direct.ci68_high;
-      delay.ci95_low = direct.ci95_low;
-      delay.ci95_high = direct.ci95_high;
-      std::vector<double> shifted = replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; });
-      std::vector<double> sorted = shifted;
-      std::sort(sorted.begin(), sorted.end());
-      const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
-      const double widen = direct.spread > 0.0 ? direct.sd / direct.spread : 1.0;
-      for (auto& d : shifted) d = direct.estimate + widen * (d - median);
-      sampling_density(shifted, delay);
+      delay = delay_from_replicates(direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }));
       r.delta_x_bias = direct.bias;
     } else {
       delay = infer_delay(grid.x0, grid.step, force, r.filtered_force, r.energy_rate, force_top, options.delay);

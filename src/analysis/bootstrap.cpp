@@ -177,4 +177,20 @@ BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replic
   return s;
 }
 
+BootstrapInterval add_systematic(BootstrapInterval interval, double shift) {
+  const double sd = std::hypot(interval.sd, shift);
+  const double widen = interval.sd > 0.0 ? sd / interval.sd : 1.0;
+  const auto stretch = [&](double bound) { return interval.estimate + widen * (bound - interval.estimate); };
+  interval.ci68_low = stretch(interval.ci68_low);
+  interval.ci68_high = stretch(interval.ci68_high);
+  interval.ci95_low = stretch(interval.ci95_low);
+  interval.ci95_high = stretch(interval.ci95_high);
+  if (interval.sd == 0.0) {
+    interval.ci68_low -= std::abs(shift), interval.ci68_high += std::abs(shift);
+    interval.ci95_low -= 1.96 * std::abs(shift), interval.ci95_high += 1.96 * std::abs(shift);
+  }
+  interval.sd = sd;
+  return interval;
+}
+
 }  // namespace rupture::analysis

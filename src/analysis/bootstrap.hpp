@@ -80,4 +80,8 @@ struct BootstrapInterval {
 };
 BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates);
 
+// Adds a systematic error `shift` (strain units) to an interval: sd in quadrature, the intervals
+// widened about the estimate by the same factor (or, with no spread at all, ±shift and ±1.96 shift).
+BootstrapInterval add_systematic(BootstrapInterval interval, double shift);
+
 }  // namespace rupture::analysis
