@@ -1,10 +1,11 @@
 // cli/main: the `rupture` binary. Parses the command line, dispatches to one subcommand, and turns
 // errors into one-line messages and exit codes (0 ok, 1 failed, 2 bad input, 4 rejected).
-#include <cstdio>
-#include <exception>
+#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
+#include <csignal>
+#include <cstdio>
+#include <exception>
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
@@ -12,7 +13,11 @@
 
 int main(int argc, char** argv) {
   using namespace rupture;
-  CLI::App app{"rupture: fiber bundle models, bonded-particle DEM tension tests and the precursor of failure"};
+  // A write past the file size limit (ulimit -f) then fails with EFBIG, handled like a full disk
+  // (a message, run.json marked failed, the checkpoints kept), instead of killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+  CLI::App app{
+      "rupture: fiber bundle models, bonded-particle DEM tension tests and the precursor of failure"};
   app.set_version_flag("--version", version_string);
   app.require_subcommand(1);
   int exit_code = exit_ok;

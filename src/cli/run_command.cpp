@@ -28,6 +28,7 @@ struct RunOptions {
   std::vector<std::string> overrides;
   std::string output;
   std::string resume;  // run folder to continue
+  bool overwrite = false;
   bool help_config = false;
 };
 
@@ -50,6 +51,7 @@ std::string command_line(const std::string& name, const RunOptions& options) {
   std::string line = "rupture " + name + " " + options.config;
   for (const auto& o : options.overrides) line += " --set " + o;
   if (!options.output.empty()) line += " --output " + options.output;
+  if (options.overwrite) line += " --overwrite";
   return line;
 }
 
@@ -81,6 +83,9 @@ void add_run_commands(CLI::App& app, int& exit_code) {
   auto* run = app.add_subcommand("run", "Run a DEM tension test from a TOML config");
   add_config_options(*run, *run_options);
   run->add_option("-o,--output", run_options->output, "output folder (overrides output.folder)");
+  run->add_flag("--overwrite", run_options->overwrite,
+                "replace the outputs of a run that ended in the output folder (a folder holding other "
+                "files, or an unfinished run, is still refused)");
   run->add_option("--resume", run_options->resume,
                   "continue the interrupted or killed run in this folder from its newest checkpoint");
   run->callback([run_options, &exit_code] {
@@ -89,9 +94,9 @@ void add_run_commands(CLI::App& app, int& exit_code) {
       return;
     }
     const auto& options = *run_options;
-    if (!options.resume.empty() &&
-        (!options.config.empty() || !options.overrides.empty() || !options.output.empty()))
-      throw InputError("rupture run --resume", "takes no config, --set or --output",
+    if (!options.resume.empty() && (!options.config.empty() || !options.overrides.empty() ||
+                                    !options.output.empty() || options.overwrite))
+      throw InputError("rupture run --resume", "takes no config, --set, --output or --overwrite",
                        "a resumed run keeps the config and folder it began with: run `rupture run --resume " +
                            options.resume + "` alone");
     loading::install_interrupt_handlers();
@@ -104,7 +109,9 @@ void add_run_commands(CLI::App& app, int& exit_code) {
       const auto config = load(options);
       const Sample sample = loading::resolve_sample(config);
       folder = config.output_folder;
-      summary = loading::run_simulation(config, sample, folder, command_line("run", options));
+      summary = loading::run_simulation(
+          config, sample, folder, command_line("run", options),
+          options.overwrite ? loading::Existing::overwrite : loading::Existing::refuse);
     }
     if (summary.signal != 0) {
       fmt::print(stderr,

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/file_lock.hpp"
 #include "loading/config.hpp"
 #include "loading/run.hpp"
 #include "report/report.hpp"
@@ -76,6 +77,7 @@ void add_study_command(CLI::App& app, int& exit_code) {
     namespace fs = std::filesystem;
     const fs::path out(o->out);
     fs::create_directories(out);
+    const io::FolderLock lock(out, "rupture study --out " + o->out);
     const std::string config_text = o->config.empty() ? default_study_config : io::read_text_file(o->config);
     const fs::path config_file = out / "study.toml";
     io::write_file_atomically(config_file, config_text);

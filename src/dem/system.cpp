@@ -1,5 +1,6 @@
 #include "dem/system.hpp"
 
+#include "core/hash.hpp"
 #include "core/morton.hpp"
 
 #include <omp.h>
@@ -802,16 +803,10 @@ double System::bond_extension(std::size_t bond) const {
 }
 
 std::uint64_t System::state_hash() const {
-  std::uint64_t hash = 0xcbf29ce484222325ULL;
-  const auto mix = [&](double v) {
-    unsigned char bytes[sizeof(double)];
-    std::memcpy(bytes, &v, sizeof v);
-    for (unsigned char c : bytes) hash = (hash ^ c) * 0x100000001b3ULL;
-  };
-  for (const std::uint32_t a : storage_of_sample_) {
-    for (double v : {x_[a], y_[a], z_[a], vx_[a], vy_[a], vz_[a]}) mix(v);
-  }
-  return hash;
+  Fnv1a h;
+  for (const std::uint32_t a : storage_of_sample_)
+    for (double v : {x_[a], y_[a], z_[a], vx_[a], vy_[a], vz_[a]}) h.add_value(v);
+  return h.hash;
 }
 
 std::size_t System::sample_index_of_largest_speed() const {

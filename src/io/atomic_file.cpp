@@ -1,13 +1,14 @@
 #include "io/atomic_file.hpp"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <sstream>
-#include <unistd.h>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -35,7 +36,7 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::write(std::string_view text) {
   if (!text.empty() && std::fwrite(text.data(), 1, text.size(), file_) != text.size()) {
-    throw RunError(fmt::format("{}: write failed ({}); is the disk full?", target_.string(), std::strerror(errno)));
+    throw RunError(write_failure(target_, errno));
   }
 }
 
@@ -45,13 +46,18 @@ void AtomicFile::commit() {
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
   if (!flushed || !closed) {
-    throw RunError(fmt::format("{}: write failed ({}); is the disk full? the previous file is kept",
-                               target_.string(), std::strerror(error)));
+    throw RunError(write_failure(target_, error) + "; the previous file is kept");
   }
   std::error_code ec;
   fs::rename(temporary_, target_, ec);
   if (ec) throw RunError(fmt::format("{}: cannot replace file ({})", target_.string(), ec.message()));
   committed_ = true;
+}
+
+std::string write_failure(const fs::path& path, int error) {
+  const char* hint =
+      error == EFBIG ? "the file size limit is reached (ulimit -f); raise it" : "is the disk full?";
+  return fmt::format("{}: write failed ({}); {}", path.string(), std::strerror(error), hint);
 }
 
 void write_file_atomically(const fs::path& target, std::string_view content) {
@@ -74,6 +80,16 @@ std::string read_text_file(const fs::path& path) {
   buffer << in.rdbuf();
   if (in.bad()) throw InputError(path.string(), "read error", "check the file");
   return std::move(buffer).str();
+}
+
+void require_text(std::string_view text, const std::string& source) {
+  const auto nul = text.find('\0');
+  if (nul == std::string_view::npos) return;
+  const auto line = 1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n');
+  throw InputError(
+      fmt::format("{}:{}", source, line),
+      fmt::format("holds a NUL byte (byte {}): this is not a text file, or it is damaged", nul + 1),
+      "give the text file (TOML, CSV) itself; a copy interrupted mid-way can end in NULs");
 }
 
 }  // namespace rupture::io

@@ -5,10 +5,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
-
-#include <nlohmann/json_fwd.hpp>
 
 namespace rupture::io {
 
@@ -38,7 +37,15 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
 // Pretty-printed JSON (2-space indent, trailing newline), written atomically.
 void write_json_atomically(const std::filesystem::path& target, const nlohmann::json& document);
 
+// "PATH: write failed (reason); what to do", for a write that failed with `error` (errno): a full
+// disk, or the file size limit (EFBIG, `ulimit -f`; SIGXFSZ is ignored so that it arrives here).
+std::string write_failure(const std::filesystem::path& path, int error);
+
 // Reads a whole file; throws InputError naming the file when it cannot be read.
 std::string read_text_file(const std::filesystem::path& path);
+
+// Throws InputError naming `source` and the line when `text` holds a NUL byte: a binary or damaged
+// file, which a parser would otherwise read only up to that byte (a TOML file's later keys lost).
+void require_text(std::string_view text, const std::string& source);
 
 }  // namespace rupture::io

@@ -1,8 +1,8 @@
 #include "io/csv.hpp"
 
-#include <charconv>
-
 #include <fmt/format.h>
+
+#include <charconv>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -24,7 +24,8 @@ void split_fields(std::string_view line, bool comma_separated, std::vector<std::
     std::size_t start = 0;
     for (;;) {
       const std::size_t comma = line.find(',', start);
-      fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+      fields.push_back(
+          trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
       if (comma == std::string_view::npos) break;
       start = comma + 1;
     }
@@ -81,6 +82,7 @@ std::size_t CsvTable::require(std::string_view name) const {
 }
 
 CsvTable parse_csv(std::string_view text, const std::string& source) {
+  require_text(text, source);
   CsvTable table;
   table.source = source;
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte order mark
@@ -102,9 +104,10 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
       }
       for (std::size_t d = 0; d < table.header.size(); ++d) {
         if (column_name(table.header[d]) == column_name(name)) {
-          throw InputError(fmt::format("{}:{}", source, number),
-                           fmt::format("columns {} and {} are both called '{}'", d + 1, c + 1, capped(column_name(name))),
-                           "give every column its own name");
+          throw InputError(
+              fmt::format("{}:{}", source, number),
+              fmt::format("columns {} and {} are both called '{}'", d + 1, c + 1, capped(column_name(name))),
+              "give every column its own name");
         }
       }
       table.header.push_back(std::move(name));
@@ -156,7 +159,8 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
       double value;
       if (!parse_double(fields[c], value)) {
         throw InputError(fmt::format("{}:{}", source, line_number),
-                         fmt::format("column {} ('{}'): '{}' is not a number", c + 1, capped(table.header[c]), capped(fields[c])),
+                         fmt::format("column {} ('{}'): '{}' is not a number", c + 1, capped(table.header[c]),
+                                     capped(fields[c])),
                          "use plain decimal numbers such as 1.5e-3");
       }
       table.columns[c].push_back(value);
@@ -169,7 +173,9 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
   return table;
 }
 
-CsvTable read_csv(const std::filesystem::path& path) { return parse_csv(read_text_file(path), path.string()); }
+CsvTable read_csv(const std::filesystem::path& path) {
+  return parse_csv(read_text_file(path), path.string());
+}
 
 std::string format_csv_row(const std::vector<double>& values) {
   std::string row;

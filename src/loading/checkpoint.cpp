@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "core/error.hpp"
+#include "core/hash.hpp"
 #include "io/atomic_file.hpp"
 
 namespace rupture::loading {
@@ -24,23 +25,6 @@ constexpr char magic[8] = {'R', 'U', 'P', 'T', 'C', 'K', 'P', 'T'};
 constexpr std::size_t header_size = sizeof magic + 4 + 8, checksum_size = 8;
 
 const std::string reader_fix = "resume from an older checkpoint, or start the run again";
-
-struct Fnv1a {
-  std::uint64_t hash = 0xcbf29ce484222325ULL;
-  void add(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ULL;
-  }
-  template <class T>
-  void add_value(const T& value) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    add(&value, sizeof value);
-  }
-  template <class T>
-  void add_vector(const std::vector<T>& values) {
-    add(values.data(), values.size() * sizeof(T));
-  }
-};
 
 // Appends fields to the payload. Vectors and strings carry their element count first.
 class Writer {
@@ -133,6 +117,10 @@ void visit_fields(Io& io, C& c) {
   io("curves_bytes", l.curves_bytes);
   io("curves_rows", l.curves_rows);
   io("breaks_bytes", l.breaks_bytes);
+  if (c.format >= 2) {
+    io("curves_hash", l.curves_hash);
+    io("breaks_hash", l.breaks_hash);
+  }
   io("last_recorded", l.last_recorded);
   io("max_work", l.max_work);
   io("max_energy_error", l.max_energy_error);
@@ -235,7 +223,7 @@ std::string encode_checkpoint(const Checkpoint& checkpoint) {
   write_snapshots(writer, checkpoint.loop.snapshots);
   std::string out(magic, sizeof magic);
   Writer header(out);
-  header("version", checkpoint_format_version);
+  header("version", checkpoint.format);
   header("payload_size", std::uint64_t(payload.size()));
   out += payload;
   Fnv1a h;
@@ -255,8 +243,8 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& source) {
   std::uint64_t payload_size = 0, stored = 0;
   std::memcpy(&version, bytes.data() + sizeof magic, sizeof version);
   std::memcpy(&payload_size, bytes.data() + sizeof magic + 4, sizeof payload_size);
-  if (version != checkpoint_format_version)
-    fail("version", fmt::format("format version {} is not the {} this rupture reads", version,
+  if (version != checkpoint_format_version && version != 1)
+    fail("version", fmt::format("format version {} is not one this rupture reads (1 to {})", version,
                                 checkpoint_format_version));
   if (payload_size != bytes.size() - header_size - checksum_size)
     fail("payload_size", fmt::format("says {} bytes but the file holds {} (truncated or appended to?)",
@@ -268,6 +256,7 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& source) {
     fail("checksum",
          fmt::format("is {:016x} but the content hashes to {:016x} (the file is corrupt)", stored, h.hash));
   Checkpoint checkpoint;
+  checkpoint.format = version;
   Reader reader(bytes.substr(header_size, payload_size), source);
   visit_fields(reader, checkpoint);
   read_snapshots(reader, checkpoint.loop.snapshots);

@@ -17,15 +17,19 @@
 
 namespace rupture::loading {
 
-// Written into every checkpoint; a reader refuses any other.
-inline constexpr std::uint32_t checkpoint_format_version = 1;
+// Written into every checkpoint. A reader takes this one and format 1 (rupture 0.1, which did not
+// record the prefix hashes) and refuses any other.
+inline constexpr std::uint32_t checkpoint_format_version = 2;
 
 // The run loop's own state between two steps (besides the engine's). The live monitor is not
 // stored: it only ever consumed the curves.csv rows, so a resume replays them.
 struct LoopState {
-  std::uint64_t curves_bytes = 0;          // bytes of curves.csv written and synced at this step
-  std::uint64_t curves_rows = 0;           // data rows among them
-  std::uint64_t breaks_bytes = 0;          // bytes of breaks.csv
+  std::uint64_t curves_bytes = 0;  // bytes of curves.csv written and synced at this step
+  std::uint64_t curves_rows = 0;   // data rows among them
+  std::uint64_t breaks_bytes = 0;  // bytes of breaks.csv
+  // FNV-1a 64 of those first curves_bytes and breaks_bytes (format 2): a resume checks that the
+  // files still begin with exactly what the checkpoint saw before it cuts them back.
+  std::uint64_t curves_hash = 0, breaks_hash = 0;
   std::uint64_t last_recorded = 0;         // step of the last curves.csv row
   double max_work = 0.0;                   // mJ: largest |W| recorded so far
   double max_energy_error = 0.0;           // mJ
@@ -39,8 +43,9 @@ struct LoopState {
 };
 
 struct Checkpoint {
-  std::string version;      // rupture version that wrote it
-  std::string command;      // the command that started the run
+  std::uint32_t format = checkpoint_format_version;  // as read (1: no prefix hashes)
+  std::string version;                               // rupture version that wrote it
+  std::string command;                               // the command that started the run
   std::string config_file;  // the config it read (relative sample paths resolve against it)
   std::string config_json;  // the resolved config (loading::to_json): a resume rebuilds the run from it
   std::uint64_t sample_fingerprint = 0;  // of the sample the run started from (sample_fingerprint())

@@ -17,12 +17,15 @@
 #include "core/units.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/csv_stream.hpp"
+#include "io/file_lock.hpp"
 #include "io/vtk.hpp"
 #include "loading/checkpoint.hpp"
 #include "loading/interrupt.hpp"
 #include "loading/ramp.hpp"
 #include "loading/separation.hpp"
 #include "rupture/version.hpp"
+#include "sample/checks.hpp"
 #include "sample/formats.hpp"
 #include "sample/lattice.hpp"
 #include "sample/presets.hpp"
@@ -35,63 +38,6 @@ namespace {
 // Whole-step throughput used for time estimates (particle-steps/s on 2 threads, intact tissue),
 // as measured by `rupture bench` (docs/performance.md).
 constexpr double assumed_particle_steps_per_s = 2e7;
-
-// A CSV file streamed row by row during the run (it cannot be atomic), flushed after every row so
-// that a killed run keeps everything recorded so far. A resume cuts it back to the byte count its
-// checkpoint recorded and appends from there. Every failed write throws RunError.
-class CsvStream {
- public:
-  // A new file with its comment lines and header.
-  CsvStream(const std::filesystem::path& path, const std::vector<std::string>& comments,
-            const std::vector<std::string>& header)
-      : path_(path), file_(std::fopen(path.c_str(), "wb"), &std::fclose) {
-    if (!file_) fail();
-    for (const auto& c : comments) put("# " + c + "\n");
-    put(io::format_csv_header(header));
-    flush();
-  }
-  // The file of an earlier run, cut back to `bytes` (a resume).
-  CsvStream(const std::filesystem::path& path, std::uint64_t bytes)
-      : path_(path), file_(nullptr, &std::fclose) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec || size < bytes)
-      throw InputError(
-          path.string(),
-          ec ? "cannot be read (" + ec.message() + ")"
-             : fmt::format("holds {} bytes, fewer than the {} its checkpoint recorded", size, bytes),
-          "the run folder was changed after the checkpoint; start the run again");
-    std::filesystem::resize_file(path, bytes, ec);
-    if (ec)
-      throw RunError(fmt::format("{}: cannot cut back to {} bytes ({})", path.string(), bytes, ec.message()));
-    file_.reset(std::fopen(path.c_str(), "ab"));
-    if (!file_) fail();
-    bytes_ = bytes;
-  }
-  void row(const std::vector<double>& values) { put(io::format_csv_row(values)); }
-  void flush() {
-    if (std::fflush(file_.get()) != 0) fail();
-  }
-  // Flushed and on disk (fsync): the byte count a checkpoint may record.
-  std::uint64_t sync() {
-    flush();
-    if (fsync(fileno(file_.get())) != 0) fail();
-    return bytes_;
-  }
-
- private:
-  void put(const std::string& text) {
-    if (std::fputs(text.c_str(), file_.get()) == EOF) fail();
-    bytes_ += text.size();
-  }
-  [[noreturn]] void fail() const {
-    throw RunError(
-        fmt::format("{}: write failed ({}); is the disk full?", path_.string(), std::strerror(errno)));
-  }
-  std::filesystem::path path_;
-  std::unique_ptr<std::FILE, decltype(&std::fclose)> file_;
-  std::uint64_t bytes_ = 0;
-};
 
 const std::vector<std::string> curve_header = {"time[s]",
                                                "step[1]",
@@ -152,10 +98,12 @@ double mean_rest_length(const Sample& sample) {
 
 }  // namespace
 
-Sample resolve_sample(const RunConfig& config) {
+namespace {
+
+Sample build_sample(const RunConfig& config) {
   if (!config.sample_lattice.empty()) {
     const auto& n = config.lattice_cells;
-    const double density = config.density.value_or(2.5e-4);
+    const double density = config.density.value_or(default_density);
     if (config.sample_lattice == "chain")
       return make_chain(std::uint32_t(n[1]), config.lattice_radius, density);
     return make_cubic_block(std::uint32_t(n[0]), std::uint32_t(n[1]), std::uint32_t(n[2]),
@@ -169,6 +117,17 @@ Sample resolve_sample(const RunConfig& config) {
     throw InputError(config.config_file.string() + ": sample.file", "no such file: " + file.string(),
                      "give a path relative to the config's folder, or an absolute one");
   return load_sample(file);
+}
+
+}  // namespace
+
+Sample resolve_sample(const RunConfig& config) {
+  Sample sample = build_sample(config);
+  const std::string source = !config.sample_file.empty()     ? config.sample_file
+                             : !config.sample_preset.empty() ? "preset " + config.sample_preset
+                                                             : "lattice " + config.sample_lattice;
+  check_sample(sample, source);
+  return sample;
 }
 
 RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sample& sample) {
@@ -254,29 +213,85 @@ namespace {
 // mode grows by orders of magnitude within a few steps, so the exact value hardly matters.
 constexpr double max_step_move = 0.5;  // 1, of the particle's radius
 
-// The folder of a new run: created, free of a run that could still be resumed, writable, and with
-// room for its checkpoints, all before the first step.
-void prepare_folder(const std::filesystem::path& folder, const RunConfig& config, const dem::System& system) {
+// What `rupture run` leaves in its folder, and what analyze, plot and report add about that run:
+// the files --overwrite removes (and nothing else, so a user's own files beside them survive).
+const std::vector<std::string> run_outputs = {"run.json",      "curves.csv",    "breaks.csv",
+                                              "snapshots.pvd", "analysis.json", "report.html",
+                                              "checkpoints",   "snapshots",     "figures"};
+
+// A folder's run.json, if rupture run wrote one there (null otherwise, also when unreadable).
+nlohmann::json read_run_record(const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(folder / "run.json", ec)) return nullptr;
+  try {
+    auto record = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
+    if (record.is_object() && record.value("tool", "") == "rupture run") return record;
+  } catch (const std::exception&) {
+  }
+  return nullptr;
+}
+
+// A run that cannot go on: it finished, or blew up (the same config would blow up again).
+bool has_ended(const nlohmann::json& record) {
+  const std::string status = record.value("status", "");
+  return status == "finished" || (status == "failed" && record.value("stop_reason", "") == "unstable");
+}
+
+// The folder of a new run, claimed before the first step: not `/`, created, locked against other
+// writers, free of a run that could still be resumed, of a run that ended (unless `existing` says
+// overwrite) and of files rupture did not write, writable, and with room for its checkpoints. A
+// refusal leaves the folder as it was (one it created is removed again).
+std::unique_ptr<io::FolderLock> claim_new_folder(const std::filesystem::path& folder, const RunConfig& config,
+                                                 const dem::System& system, const std::string& command,
+                                                 Existing existing) {
+  namespace fs = std::filesystem;
   const std::string fix = "choose a writable folder with -o/--output or output.folder";
   std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(folder, ec), ec);
+  if (!ec && resolved == resolved.root_path())
+    throw InputError(folder.string(), "is the root folder; a run writes a dozen files into its folder",
+                     "give a folder of its own, e.g. -o run");
+  const bool existed = fs::exists(folder, ec);
+  fs::create_directories(folder, ec);
   if (ec)
     throw InputError(folder.string(), fmt::format("cannot create the output folder ({})", ec.message()), fix);
-  if (!list_checkpoints(folder).empty())
-    throw InputError(folder.string(), "holds the checkpoints of an unfinished run",
-                     fmt::format("continue it with `rupture run --resume {}`, or remove {} to start over",
-                                 folder.string(), (folder / "checkpoints").string()));
+  auto lock = std::make_unique<io::FolderLock>(folder, command);
+  const auto refuse = [&](const std::string& problem, const std::string& remedy) {
+    lock.reset();
+    if (!existed) fs::remove_all(folder, ec);
+    throw InputError(folder.string(), problem, remedy);
+  };
+  const nlohmann::json record = read_run_record(folder);
+  if (record.is_null()) {
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+      if (entry.path().filename() != io::folder_lock_name)
+        refuse(fmt::format("holds files that rupture run did not write (e.g. {})",
+                           entry.path().filename().string()),
+               "give an empty or new folder with -o/--output or output.folder");
+  } else if (!has_ended(record) && !list_checkpoints(folder).empty()) {
+    refuse("holds the checkpoints of an unfinished run",
+           fmt::format("continue it with `rupture run --resume {}`, or start over with --overwrite",
+                       folder.string()));
+  } else if (existing == Existing::refuse) {
+    const std::string status = record.value("status", "");
+    refuse(has_ended(record) || status == "failed"
+               ? fmt::format("holds a {} run ({}), which is kept", status, record.value("stop_reason", ""))
+               : "holds a run that was stopped before its first checkpoint, which is kept",
+           "give --overwrite to replace it, or choose another folder with -o/--output");
+  } else {
+    for (const auto& name : run_outputs) fs::remove_all(folder / name, ec);
+  }
   // A checkpoint is the engine state plus a little text; the newest `keep` stay while one more is
   // written. The curve files are small beside them.
   const double checkpoint_bytes = double(system.state_bytes()) + 65536.0;
   const double needed = double(config.checkpoint_keep + 1) * checkpoint_bytes;
-  const auto space = std::filesystem::space(folder, ec);
+  const auto space = fs::space(folder, ec);
   if (!ec && double(space.available) < needed)
-    throw InputError(folder.string(),
-                     fmt::format("has {:.3g} MB free, but {} checkpoints of {:.3g} MB need {:.3g} MB",
-                                 double(space.available) / 1e6, config.checkpoint_keep + 1,
-                                 checkpoint_bytes / 1e6, needed / 1e6),
-                     "free space, choose another output folder, or lower checkpoint.keep");
+    refuse(fmt::format("has {:.3g} MB free, but {} checkpoints of {:.3g} MB need {:.3g} MB",
+                       double(space.available) / 1e6, config.checkpoint_keep + 1, checkpoint_bytes / 1e6,
+                       needed / 1e6),
+           "free space, choose another output folder, or lower checkpoint.keep");
+  return lock;
 }
 
 analysis::MonitorOptions monitor_options(const RunConfig& config) {
@@ -287,26 +302,32 @@ analysis::MonitorOptions monitor_options(const RunConfig& config) {
 
 // The monitor's state at a checkpoint: it has only ever seen the curves.csv rows, so feed them
 // again (the file holds the shortest text that reads back to each double, so the bits match).
-void replay(analysis::Monitor& monitor, const std::filesystem::path& curves_file, std::uint64_t rows) {
-  const io::CsvTable curves = io::read_csv(curves_file);
-  if (curves.rows() != rows)
-    throw InputError(curves_file.string(),
-                     fmt::format("holds {} rows where its checkpoint recorded {}", curves.rows(), rows),
-                     "the run folder was changed after the checkpoint; start the run again");
+// Only the part the checkpoint recorded is read.
+void replay(analysis::Monitor& monitor, const std::filesystem::path& curves_file, const LoopState& loop) {
+  const std::string text = io::read_text_file(curves_file);
+  const io::CsvTable curves =
+      io::parse_csv(std::string_view(text).substr(0, loop.curves_bytes), curves_file.string());
+  if (curves.rows() != loop.curves_rows)
+    throw InputError(
+        curves_file.string(),
+        fmt::format("holds {} rows where its checkpoint recorded {}", curves.rows(), loop.curves_rows),
+        "the run folder was changed after the checkpoint; start over with --overwrite");
   const auto& strain = curves.column("strain");
   const auto& force = curves.column("force_top");
   const auto& energy = curves.column("elastic_energy");
-  for (std::size_t r = 0; r < rows; ++r) (void)monitor.add_point(strain[r], force[r], energy[r]);
+  for (std::size_t r = 0; r < loop.curves_rows; ++r) (void)monitor.add_point(strain[r], force[r], energy[r]);
 }
 
-// What a resume starts from: the checkpoint with its file and warnings, and the resuming command.
+// What a resume starts from: the checkpoint with its file and warnings, the resuming command, and
+// the folder's lock, taken before anything in it was read.
 struct ResumePoint {
   const LoadedCheckpoint& loaded;
   std::string command;  // the resuming command line
+  std::unique_ptr<io::FolderLock>& lock;
 };
 
 RunSummary execute(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                   const std::string& command, const ResumePoint* resume) {
+                   const std::string& command, Existing existing, ResumePoint* resume) {
   const auto wall_start = std::chrono::steady_clock::now();
   omp_set_num_threads(int(config.threads));
   const dem::Params params = config.dem_params(sample.density);
@@ -319,13 +340,27 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
 
   LoopState loop;
   nlohmann::json resumes = nlohmann::json::array();
-  std::unique_ptr<CsvStream> curves, breaks;
+  std::unique_ptr<io::FolderLock> lock;
+  std::unique_ptr<io::CsvStream> curves, breaks;
+  analysis::Monitor monitor(monitor_options(config));
   if (resume != nullptr) {
+    lock = std::move(resume->lock);
     const Checkpoint& c = resume->loaded.checkpoint;
     system.restore_state(c.engine, resume->loaded.file.string());
     loop = c.loop;
-    curves = std::make_unique<CsvStream>(curves_file, loop.curves_bytes);
-    breaks = std::make_unique<CsvStream>(breaks_file, loop.breaks_bytes);
+    // Everything is checked before a byte of the folder changes: both files still begin with
+    // exactly what the checkpoint saw, and the monitor replays from that part.
+    const io::FilePrefix curves_prefix{loop.curves_bytes, loop.curves_hash},
+        breaks_prefix{loop.breaks_bytes, loop.breaks_hash};
+    for (const auto& [file, prefix] :
+         {std::pair{curves_file, curves_prefix}, std::pair{breaks_file, breaks_prefix}})
+      if (const auto mismatch = io::prefix_mismatch(file, prefix, c.format >= 2))
+        throw InputError(file.string(), *mismatch,
+                         "the run folder was changed after the checkpoint; restore it, or start over with "
+                         "--overwrite");
+    if (config.monitor) replay(monitor, curves_file, loop);
+    curves = std::make_unique<io::CsvStream>(curves_file, curves_prefix);
+    breaks = std::make_unique<io::CsvStream>(breaks_file, breaks_prefix);
     // Earlier resumes stay listed in run.json.
     try {
       const auto before = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
@@ -337,7 +372,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
                        {"step", c.engine.step},
                        {"warnings", resume->loaded.warnings}});
   } else {
-    prepare_folder(folder, config, system);
+    lock = claim_new_folder(folder, config, system, command, existing);
   }
 
   nlohmann::json report = {{"tool", "rupture run"},
@@ -361,15 +396,13 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     const std::vector<std::string> comments = {
         fmt::format("rupture {} run: {}", version_string, command),
         "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
-    curves = std::make_unique<CsvStream>(curves_file, comments, curve_header);
-    breaks = std::make_unique<CsvStream>(breaks_file, comments, break_header);
+    curves = std::make_unique<io::CsvStream>(curves_file, comments, curve_header);
+    breaks = std::make_unique<io::CsvStream>(breaks_file, comments, break_header);
   }
 
   RunSummary summary;
   summary.max_energy_error = loop.max_energy_error;
   summary.max_relative_energy_error = loop.max_relative_energy_error;
-  analysis::Monitor monitor(monitor_options(config));
-  if (resume != nullptr && config.monitor) replay(monitor, curves_file, loop.curves_rows);
   const auto strain_now = [&] { return 100.0 * system.top_plate().displacement / l0; };
   std::string instability;  // what gave the instability away, naming the particle ("" while stable)
   const auto record = [&] {
@@ -392,9 +425,11 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
             "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
             warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
         if (!warning->in_time)
-          fmt::print("monitor: the rows are too far apart to warn in time (the warning comes after the earliest predicted "
-                   "x_c); output.interval giving rows at most {:.3g} % apart would have warned before it\n",
-                     warning->max_row_spacing);
+          fmt::print(
+              "monitor: the rows are too far apart to warn in time (the warning comes after the earliest "
+              "predicted "
+              "x_c); output.interval giving rows at most {:.3g} % apart would have warned before it\n",
+              warning->max_row_spacing);
       }
     }
     loop.max_work = std::max(loop.max_work, std::abs(w));
@@ -442,8 +477,11 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     c.config_file = config.config_file.string();
     c.config_json = to_json(config).dump();
     c.sample_fingerprint = fingerprint;
-    loop.curves_bytes = curves->sync();
-    loop.breaks_bytes = breaks->sync();
+    const io::FilePrefix curves_written = curves->sync(), breaks_written = breaks->sync();
+    loop.curves_bytes = curves_written.bytes;
+    loop.curves_hash = curves_written.hash;
+    loop.breaks_bytes = breaks_written.bytes;
+    loop.breaks_hash = breaks_written.hash;
     loop.max_energy_error = summary.max_energy_error;
     loop.max_relative_energy_error = summary.max_relative_energy_error;
     loop.wall_seconds = wall_now();
@@ -626,33 +664,23 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
 }  // namespace
 
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command) {
-  return execute(config, sample, folder, command, nullptr);
+                          const std::string& command, Existing existing) {
+  return execute(config, sample, folder, command, existing, nullptr);
 }
 
 RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command) {
-  if (std::filesystem::exists(folder / "run.json")) {
-    nlohmann::json before;
-    try {
-      before = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
-    } catch (const nlohmann::json::exception&) {
-    }
-    const std::string status = before.value("status", "");
-    if (status == "finished" || (status == "failed" && before.value("stop_reason", "") == "unstable"))
-      throw InputError((folder / "run.json").string(),
-                       fmt::format("the run already ended ({}, {}); there is nothing to resume", status,
-                                   before.value("stop_reason", "")),
-                       "start a new run with `rupture run CONFIG.toml`");
-  }
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+    throw InputError(folder.string(), "is not a run folder", "give the folder of the run to continue");
+  std::unique_ptr<io::FolderLock> lock = std::make_unique<io::FolderLock>(folder, command);
+  if (const nlohmann::json record = read_run_record(folder); !record.is_null() && has_ended(record))
+    throw InputError((folder / "run.json").string(),
+                     fmt::format("the run already ended ({}, {}); there is nothing to resume",
+                                 record.value("status", ""), record.value("stop_reason", "")),
+                     "start a new run with `rupture run CONFIG.toml`");
   const LoadedCheckpoint loaded = load_newest_checkpoint(folder);
-  for (const auto& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
   const Checkpoint& c = loaded.checkpoint;
   const std::string source = loaded.file.string();
-  if (c.version != version_string)
-    fmt::print(
-        stderr,
-        "warning: {} was written by rupture {}, this is {}: the continued run may differ in the last bits\n",
-        source, c.version, version_string);
   nlohmann::json resolved;
   try {
     resolved = nlohmann::json::parse(c.config_json);
@@ -665,8 +693,19 @@ RunSummary resume_simulation(const std::filesystem::path& folder, const std::str
     throw InputError(source + ": sample_fingerprint",
                      "the sample differs from the one the run started from (the sample file changed?)",
                      "restore the sample the run began with, or start the run again");
-  const ResumePoint point{loaded, command};
-  return execute(config, sample, folder, c.command, &point);
+  for (const auto& w : loaded.warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (c.version != version_string)
+    fmt::print(
+        stderr,
+        "warning: {} was written by rupture {}, this is {}: the continued run may differ in the last bits\n",
+        source, c.version, version_string);
+  if (c.format < 2)
+    fmt::print(stderr,
+               "warning: {} (format {}) records only the lengths of curves.csv and breaks.csv, not their "
+               "content: an edit to them before the resume would go unnoticed\n",
+               source, c.format);
+  ResumePoint point{loaded, command, lock};
+  return execute(config, sample, folder, c.command, Existing::refuse, &point);
 }
 
 }  // namespace rupture::loading

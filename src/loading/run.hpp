@@ -56,23 +56,31 @@ struct RunSummary {
   std::filesystem::path checkpoint;
 };
 
+// What a new run does with a folder that holds a run which ended (finished, unstable, or killed
+// before its first checkpoint): refuse, naming it, or replace its outputs.
+enum class Existing { refuse, overwrite };
+
 // Runs to a stop rule, writing into `folder`. `command` is recorded in run.json and in the header
-// of curves.csv and breaks.csv. Checks before the first step that the folder can be written, has
-// room for the checkpoints and holds no unfinished run (InputError). Writes a checkpoint every
+// of curves.csv and breaks.csv. Before the first step it claims the folder (InputError, and the
+// folder left as it was, when it is `/`, is written by another process, holds an unfinished run,
+// an ended one unless `existing` is overwrite, or files rupture did not write, or has no room for
+// the checkpoints), and holds a lock on it to the end. Writes a checkpoint every
 // checkpoint.every steps or checkpoint.minutes, and after the step in which SIGINT/SIGTERM came
 // (if install_interrupt_handlers() was called), then returns with status "interrupted".
 // An unstable run keeps what it wrote, marks run.json failed and throws RunError naming the step,
 // the particle, the likely cause and a dt; a failed write throws RunError naming the file and the
 // last intact checkpoint. A finished or unstable run removes its checkpoints.
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command);
+                          const std::string& command, Existing existing = Existing::refuse);
 
 // Continues the run in `folder` from its newest readable checkpoint (warning on stderr about each
 // damaged newer one): the config and command stored there, the output files cut back to the
 // checkpoint's byte counts and appended to, so that curves.csv and breaks.csv come out
 // byte-identical to an uninterrupted run. `command` (the resuming command line) is listed under
-// "resumes" in run.json. Throws InputError when there is no readable checkpoint, the run already
-// ended, or the sample changed since the run began.
+// "resumes" in run.json. Everything is checked before anything in the folder changes; throws
+// InputError, the folder untouched, when another process writes it, there is no readable
+// checkpoint, the run already ended, the sample changed since the run began, or curves.csv or
+// breaks.csv no longer begin with what the checkpoint recorded (their length and hash).
 RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command);
 
 }  // namespace rupture::loading

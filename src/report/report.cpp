@@ -6,10 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "analysis/analysis.hpp"
 #include "core/error.hpp"
 #include "figures/figures.hpp"
 #include "io/atomic_file.hpp"
-#include "analysis/analysis.hpp"
+#include "io/file_lock.hpp"
 #include "io/markup.hpp"
 #include "rupture/version.hpp"
 #include "scan/results.hpp"
@@ -140,7 +141,8 @@ std::string provenance(const fs::path& folder, const std::string& command) {
   return fmt::format(
       "<p>Written by rupture {} (<code>{}</code>) from the folder <code>{}</code>. Every number below is "
       "read from the files of that folder; the figures are redrawn from them.</p>\n",
-      io::escape_markup(version_string), io::escape_markup(command), io::escape_markup(fs::absolute(folder).string()));
+      io::escape_markup(version_string), io::escape_markup(command),
+      io::escape_markup(fs::absolute(folder).string()));
 }
 
 // The one sentence a reader wants first: where the precursor was and how far ahead of failure.
@@ -163,16 +165,16 @@ std::string run_summary(const json& analysis) {
         number_text(x_p["value"].get<double>()), number_text(x_c["value"].get<double>()),
         number_text(delta["mean"].get<double>()), number_text(delta["sd"].get<double>()),
         number_text(ci95.at(0).get<double>()), number_text(ci95.at(1).get<double>()),
-        io::escape_markup(analysis::precursor_order(ci95.at(0).get<double>(), ci95.at(1).get<double>())), fmt::arg("u", unit));
+        io::escape_markup(analysis::precursor_order(ci95.at(0).get<double>(), ci95.at(1).get<double>())),
+        fmt::arg("u", unit));
   } else {
     text = "No precursor found: the analysis did not locate both maxima.";
   }
   if (analysis.value("accepted", false))
     text += " The curve passed the acceptance rules.";
   else
-    text +=
-        " Analysis rejected: " + io::escape_markup(analysis.value("rejection", std::string("no reason given"))) +
-        ".";
+    text += " Analysis rejected: " +
+            io::escape_markup(analysis.value("rejection", std::string("no reason given"))) + ".";
   if (analysis["mechanism"].is_object()) {
     text += " Breaking mechanism: <strong>" + io::escape_markup(analysis["mechanism"].value("class", "")) +
             "</strong>.";
@@ -189,7 +191,13 @@ std::string analysis_section(const json& analysis) {
       measured_row("F_c", "force maximum", analysis["F_c"]),
       measured_row("x_m", "strain of the elastic-energy maximum", analysis["x_m"]),
       measured_row("E_max", "elastic-energy maximum", analysis["E_max"]),
-      measured_row("δ_x", "delay x_c − x_p (method: " + io::escape_markup(analysis["delta_x"].is_object() ? analysis["delta_x"].value("method", "") : std::string()) + ") ± sd", analysis["delta_x"]),
+      measured_row(
+          "δ_x",
+          "delay x_c − x_p (method: " +
+              io::escape_markup(analysis["delta_x"].is_object() ? analysis["delta_x"].value("method", "")
+                                                                : std::string()) +
+              ") ± sd",
+          analysis["delta_x"]),
       measured_row("δ_x (direct)", "x_c − x_p from the two peak fits", analysis["delta_x_direct"]),
       measured_row("Γ", "(x_m − x_c)/δ_x (paper eq. 17)", analysis["Gamma"]),
       measured_row("A_r", "E_max/(x_p ℰ_max)", analysis["A_r"])};
@@ -204,7 +212,9 @@ std::string analysis_section(const json& analysis) {
       return fmt::format("[{}, {}]", number_text(delta.at(key).at(0).get<double>()),
                          number_text(delta.at(key).at(1).get<double>()));
     };
-    html += "<p>Distribution of δ<sub>x</sub> (bootstrap replicates, or the posterior of the shift-l1 method):</p>\n";
+    html +=
+        "<p>Distribution of δ<sub>x</sub> (bootstrap replicates, or the posterior of the shift-l1 "
+        "method):</p>\n";
     html += table({"mode / estimate", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
                   {{number_text(delta["map"].get<double>()), number_text(delta["mean"].get<double>()),
                     number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()),
@@ -220,8 +230,8 @@ std::string analysis_section(const json& analysis) {
                     flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
   }
   if (const auto& mechanism = analysis["mechanism"]; mechanism.is_object()) {
-    html += "<p>Breaking mechanism: <strong>" + io::escape_markup(mechanism.value("class", "")) + "</strong> — " +
-            io::escape_markup(mechanism.value("reason", "")) + "</p>\n";
+    html += "<p>Breaking mechanism: <strong>" + io::escape_markup(mechanism.value("class", "")) +
+            "</strong> — " + io::escape_markup(mechanism.value("reason", "")) + "</p>\n";
   }
   return html;
 }
@@ -235,7 +245,8 @@ std::string run_section(const json& run) {
   const auto& balance = run["energy_balance"];
   const auto& plan = run["plan"];
   std::vector<std::vector<std::string>> rows{
-      {"status", io::escape_markup(get("status").is_string() ? get("status").get<std::string>() : "unknown"), ""},
+      {"status", io::escape_markup(get("status").is_string() ? get("status").get<std::string>() : "unknown"),
+       ""},
       {"why it stopped",
        io::escape_markup(get("stop_reason").is_string() ? get("stop_reason").get<std::string>() : "–"), ""},
       {"steps", num(get("steps")), "1"},
@@ -280,7 +291,8 @@ std::string run_report(const fs::path& folder, const std::string& command, std::
   const json analysis = fs::exists(folder / "analysis.json") ? read_json(folder / "analysis.json") : json();
   const json run = fs::exists(folder / "run.json") ? read_json(folder / "run.json") : json();
   const auto drawn = figures::plot(folder, folder / "figures", {});
-  std::string body = "<h1>Tension test: " + io::escape_markup(fs::absolute(folder).filename().string()) + "</h1>\n";
+  std::string body =
+      "<h1>Tension test: " + io::escape_markup(fs::absolute(folder).filename().string()) + "</h1>\n";
   body += provenance(folder, command) + run_summary(analysis);
   body += figures_section(drawn, count) + analysis_section(analysis) + run_section(run);
   return page("rupture report: " + folder.filename().string(), body);
@@ -336,6 +348,7 @@ ReportResult write_report(const fs::path& folder, const std::string& command) {
     throw InputError(folder.string(), "not a folder",
                      "give a run folder (rupture run) or a scan folder (rupture scan)");
   }
+  const io::FolderLock lock(folder, command);  // one writer: a run still writing it refuses the report
   ReportResult result;
   result.html = folder / "report.html";
   const std::string html = figures::is_scan_folder(folder) ? scan_report(folder, command, result.figures)

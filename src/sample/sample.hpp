@@ -12,6 +12,8 @@
 
 namespace rupture {
 
+inline constexpr double default_density = 2.5e-4;  // g/mm^3, as in the paper
+
 // Which plate, if any, a particle is glued to.
 enum class ParticleGroup : std::uint8_t { free = 0, bottom = 1, top = 2 };
 
@@ -33,7 +35,7 @@ struct Sample {
   std::vector<double> radius;           // mm
   std::vector<ParticleGroup> group;     // glued layer membership
   std::vector<Bond> bonds;              // sorted by (i, j), i < j
-  double density = 2.5e-4;              // g/mm^3; a run config may override it
+  double density = default_density;     // g/mm^3; a run config may override it
   // Free-text provenance (tool version, generator inputs, source file), one entry per line; carried
   // through rupture's own format as comment lines, so every sample file says how it was made.
   std::vector<std::string> provenance;

@@ -1,14 +1,13 @@
 #include "scan/ledger.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <chrono>
 
 #include "analysis/curve_file.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/file_lock.hpp"
 #include "loading/run.hpp"
 #include "rupture/version.hpp"
 #include "scan/results.hpp"
@@ -16,46 +15,6 @@
 namespace rupture::scan {
 
 namespace {
-
-// The whole-file write lock of an open file description (Linux OFD lock), taken without waiting; the
-// kernel drops it when the holder exits, however it exits, so a killed scan never leaves a point
-// locked. OFD locks rather than flock because they can be queried without being taken: --status and
-// the results table look at every point while jobs of the same process claim them, and a probe that
-// took the lock, even for a moment, would make a job skip its point.
-struct flock whole_file(short type) {
-  struct flock lock {};
-  lock.l_type = type;
-  lock.l_whence = SEEK_SET;  // l_start = l_len = 0: the whole file
-  return lock;
-}
-
-class PointLock {
- public:
-  explicit PointLock(const std::filesystem::path& file)
-      : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
-    if (fd_ < 0) throw RunError(fmt::format("cannot open the lock file {}", file.string()));
-    struct flock lock = whole_file(F_WRLCK);
-    held_ = ::fcntl(fd_, F_OFD_SETLK, &lock) == 0;
-  }
-  ~PointLock() { ::close(fd_); }
-  PointLock(const PointLock&) = delete;
-  PointLock& operator=(const PointLock&) = delete;
-  bool held() const { return held_; }
-
- private:
-  int fd_;
-  bool held_ = false;
-};
-
-// True when some process (this one included) holds the point's lock now.
-bool is_locked(const std::filesystem::path& file) {
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;  // never claimed
-  struct flock lock = whole_file(F_WRLCK);
-  const bool locked = ::fcntl(fd, F_OFD_GETLK, &lock) == 0 && lock.l_type != F_UNLCK;
-  ::close(fd);
-  return locked;
-}
 
 int count_attempts(const std::filesystem::path& folder) {
   int n = 0;
@@ -159,9 +118,9 @@ PointStatus point_status(const Plan& plan, const Point& point) {
     s.why = result->at("row").value("why", "");
     return s;
   }
-  s.state = is_locked(folder / "lock") ? PointState::running
-            : s.attempts > 0           ? PointState::partial
-                                       : PointState::pending;
+  s.state = io::is_locked(folder / "lock") ? PointState::running
+            : s.attempts > 0               ? PointState::partial
+                                           : PointState::pending;
   s.status = to_string(s.state);
   return s;
 }
@@ -178,7 +137,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
                                         int threads) {
   const auto folder = point_folder(plan, point);
   std::filesystem::create_directories(folder);
-  const PointLock lock(folder / "lock");
+  const io::FileLock lock(folder / "lock");
   if (!lock.held()) return std::nullopt;
   if (auto done = read_result(plan, point)) return done;  // finished while we were looking
 

@@ -74,7 +74,8 @@ std::string toml_text(const toml::node& node, const std::string& where) {
   if (auto d = node.value_exact<double>()) return fmt::format("{}", *d);
   if (const auto* array = node.as_array()) {
     std::string text = "[";
-    for (std::size_t i = 0; i < array->size(); ++i) text += (i ? ", " : "") + toml_text(*array->get(i), where);
+    for (std::size_t i = 0; i < array->size(); ++i)
+      text += (i ? ", " : "") + toml_text(*array->get(i), where);
     return text + "]";
   }
   throw InputError(where, "a value that is not a string, number, boolean or array",
@@ -116,9 +117,11 @@ LogRange read_range(const Section& grid, const std::string& key) {
 
 ScanConfig load_scan_config(const std::filesystem::path& file) {
   const std::string source = file.string();
+  const std::string file_text = io::read_text_file(file);
+  io::require_text(file_text, source);
   toml::table root;
   try {
-    root = toml::parse(io::read_text_file(file), source);
+    root = toml::parse(file_text, source);
   } catch (const toml::parse_error& e) {
     throw InputError(fmt::format("{}:{}", source, e.source().begin.line), std::string(e.description()),
                      "fix the TOML syntax");

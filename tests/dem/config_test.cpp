@@ -69,11 +69,11 @@ TEST(Config, BadInputIsRejectedWithFileKeyAndFix) {
               HasSubstr("more than one sample given"));
   // A value given by --set is reported as the --set, not as the file's.
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n", {"loading.speed=-1"}),
-              HasSubstr("--set loading.speed: must be > 0"));
+              HasSubstr("--set loading.speed: -1 is outside the plausible range [1e-09, 1e+09] mm/s"));
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n", {"bonds.stiffness=abc"}),
               StartsWith("--set bonds.stiffness: expects a number"));
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n[loading]\nspeed = -1\n", {"bonds.stiffness=5"}),
-              HasSubstr("test.toml: loading.speed: must be > 0"));
+              HasSubstr("test.toml: loading.speed: -1 is outside the plausible range"));
   EXPECT_THAT(error_of("[sample]\nlattice = \"chain\"\n", {"time.dtt=1"}),
               HasSubstr("--set time.dtt: unknown key"));
   EXPECT_THAT(error_of("[sample\n"), HasSubstr("test.toml:1"));

@@ -179,7 +179,7 @@ TEST(Checkpoint, DamagedBytesAreRefusedNamingTheField) {
   EXPECT_THAT(message_of(good.substr(0, 10)), HasSubstr(": header"));
   EXPECT_THAT(message_of("NOTACKPT" + good.substr(8)), HasSubstr(": magic"));
   std::string newer = good;
-  newer[8] = 2;
+  newer[8] = char(checkpoint_format_version + 1);
   EXPECT_THAT(message_of(newer), HasSubstr(": version"));
   // Every prefix is refused cleanly (never a crash or a read past the end).
   for (std::size_t n = 0; n < good.size(); ++n) EXPECT_NE(message_of(good.substr(0, n)), "(accepted)") << n;
@@ -286,9 +286,9 @@ TEST(Checkpoint, CheckpointKeysAreChecked) {
     }
     return std::string("(accepted)");
   };
-  EXPECT_THAT(message("keep = 0"), HasSubstr("c.toml: checkpoint.keep: must be between 1 and 100"));
-  EXPECT_THAT(message("every = -1"), HasSubstr("c.toml: checkpoint.every: must be >= 0 (steps)"));
-  EXPECT_THAT(message("minutes = -2"), HasSubstr("c.toml: checkpoint.minutes: must be >= 0"));
+  EXPECT_THAT(message("keep = 0"), HasSubstr("c.toml: checkpoint.keep: 0 is outside the plausible range [1, 100]; the default is 2"));
+  EXPECT_THAT(message("every = -1"), HasSubstr("c.toml: checkpoint.every: -1 is outside the plausible range [0, 1e+15] steps"));
+  EXPECT_THAT(message("minutes = -2"), HasSubstr("c.toml: checkpoint.minutes: -2 is outside the plausible range [0, 1e+06] min"));
   EXPECT_THAT(message("often = 3"), HasSubstr("c.toml: checkpoint.often: unknown key"));
   EXPECT_EQ(message("every = 100\nminutes = 0"), "(accepted)");
 }

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -57,7 +58,8 @@ struct Child {
 };
 
 // Starts `rupture ARGS` in `cwd` (CI=1: no progress line). A `file_limit` (bytes) caps the size of
-// every file it writes (RLIMIT_FSIZE, with SIGXFSZ ignored): writes past it fail as on a full disk.
+// every file it writes (RLIMIT_FSIZE, `ulimit -f`); SIGXFSZ keeps its default action (killing the
+// process), so only rupture's own handling turns a write past the limit into a failed write.
 Child start(const fs::path& cwd, const std::vector<std::string>& args, rlim_t file_limit = RLIM_INFINITY) {
   static int count = 0;
   Child child{-1, cwd / fmt::format("rupture_{}.out", count), cwd / fmt::format("rupture_{}.err", count)};
@@ -83,7 +85,7 @@ Child start(const fs::path& cwd, const std::vector<std::string>& args, rlim_t fi
     dup2(o, 1);
     dup2(e, 2);
     if (file_limit != RLIM_INFINITY) {
-      signal(SIGXFSZ, SIG_IGN);
+      signal(SIGXFSZ, SIG_DFL);
       const rlimit limit{file_limit, file_limit};
       setrlimit(RLIMIT_FSIZE, &limit);
     }
@@ -257,8 +259,9 @@ TEST(Resume, FailedWriteKeepsTheLastCheckpointAndTheRunResumes) {
   const std::uint64_t limit = 150000;
   ASSERT_GT(fs::file_size(reference / "curves.csv"), limit);
   const Ended full = wait_for_end(start(cwd, run_args(), limit));
-  EXPECT_EQ(full.exit_code, 1);
-  EXPECT_THAT(full.err, HasSubstr("curves.csv: write failed"));
+  EXPECT_EQ(full.exit_code, 1) << "signal " << full.signal;
+  EXPECT_THAT(full.err,
+              HasSubstr("curves.csv: write failed (File too large); the file size limit is reached"));
   EXPECT_THAT(full.err, HasSubstr("is intact: make room, then continue with `rupture run --resume run`"));
   const auto report = nlohmann::json::parse(slurp(folder / "run.json"));
   EXPECT_EQ(report["status"], "failed");
@@ -309,7 +312,194 @@ TEST(Resume, UnwritableOutputFolderIsRefusedBeforeTheRun) {
 
   const Ended none = run_to_end(dir.path(), {"run", "--resume", "nowhere"});
   EXPECT_EQ(none.exit_code, 2);
-  EXPECT_THAT(none.err, HasSubstr("holds no checkpoint"));
+  EXPECT_THAT(none.err, HasSubstr("nowhere: is not a run folder"));
+}
+
+// Every file under `folder` with its bytes, but the lock file: a resume that takes the lock and
+// then refuses may leave its own name there, which is not data.
+std::map<std::string, std::string> folder_bytes(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file() && entry.path().filename() != ".rupture-lock")
+      files[fs::relative(entry.path(), folder).string()] = slurp(entry.path());
+  return files;
+}
+
+// A run killed after its checkpoint of `step`, in `dir`/NAME/run.
+fs::path killed_run(const TempDir& dir, const std::string& name, std::uint64_t step) {
+  const fs::path cwd = dir / name;
+  fs::create_directories(cwd);
+  const Child child = start(cwd, run_args());
+  EXPECT_TRUE(wait_for_checkpoint(child, cwd / "run", step));
+  kill(child.pid, SIGKILL);
+  EXPECT_EQ(wait_for_end(child).signal, SIGKILL);
+  return cwd / "run";
+}
+
+TEST(RunFolder, ASecondWriterIsRefusedNamingTheFirst) {
+  TempDir dir;
+  const fs::path cwd = dir / "busy", folder = cwd / "run";
+  fs::create_directories(cwd);
+  const Child first = start(cwd, run_args());
+  ASSERT_TRUE(wait_for_checkpoint(first, folder, 1000));
+  for (const auto& args :
+       {run_args(), run_args({"--overwrite"}), std::vector<std::string>{"run", "--resume", "run"}}) {
+    const Ended second = run_to_end(cwd, args);
+    EXPECT_EQ(second.exit_code, 2) << second.err;
+    EXPECT_THAT(second.err, HasSubstr(fmt::format(
+                                "run: is being written by another process (pid {}: rupture run", first.pid)));
+    EXPECT_THAT(second.err, HasSubstr("wait for it to end, or choose another output folder"));
+  }
+  const Ended report = run_to_end(cwd, {"report", "run"});
+  EXPECT_EQ(report.exit_code, 2);
+  EXPECT_THAT(report.err, HasSubstr("is being written by another process"));
+  // The kernel drops the lock of a killed run: it resumes.
+  kill(first.pid, SIGKILL);
+  ASSERT_EQ(wait_for_end(first).signal, SIGKILL);
+  const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(folder / "run.json"))["status"], "finished");
+}
+
+TEST(RunFolder, AnEndedRunIsReplacedOnlyWithOverwriteAndOtherFilesNever) {
+  TempDir dir;
+  const fs::path folder = reference_run(dir), cwd = folder.parent_path();
+  const auto before = folder_bytes(folder);
+  const Ended again = run_to_end(cwd, run_args());
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_THAT(again.err, HasSubstr("run: holds a finished run (separated), which is kept; give --overwrite"));
+  EXPECT_EQ(folder_bytes(folder), before);
+
+  io::write_file_atomically(folder / "notes.txt", "my own notes\n");
+  const Ended replaced = run_to_end(cwd, run_args({"--overwrite"}));
+  ASSERT_EQ(replaced.exit_code, 0) << replaced.err;
+  EXPECT_EQ(slurp(folder / "notes.txt"), "my own notes\n") << "--overwrite removes only rupture's outputs";
+  EXPECT_THAT(slurp(folder / "curves.csv"), HasSubstr(" --overwrite\n"));
+
+  const fs::path foreign = cwd / "foreign";
+  fs::create_directories(foreign);
+  io::write_file_atomically(foreign / "data.csv", "1,2\n");
+  const Ended refused = run_to_end(cwd, {"run", block_config, "-o", "foreign", "--overwrite"});
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr("foreign: holds files that rupture run did not write (e.g. data.csv)"));
+  EXPECT_EQ(folder_bytes(foreign), (std::map<std::string, std::string>{{"data.csv", "1,2\n"}}));
+}
+
+// What a kill at each step of the finish sequence leaves (each step is one atomic write or one
+// removal), rebuilt from real run folders: every state either resumes, or is named and replaced
+// with --overwrite; none is stuck.
+TEST(RunFolder, EveryPhaseOfTheFinishSequenceLeavesAUsableFolder) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path killed = killed_run(dir, "killed", 1000);
+
+  // Killed after run.json said "finished", before the checkpoints were removed.
+  const fs::path cwd = dir / "finishing", folder = cwd / "run";
+  fs::create_directories(cwd);
+  fs::copy(reference, folder, fs::copy_options::recursive);
+  fs::copy(killed / "checkpoints", folder / "checkpoints", fs::copy_options::recursive);
+  const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+  EXPECT_EQ(resumed.exit_code, 2);
+  EXPECT_THAT(resumed.err, HasSubstr("the run already ended (finished, separated)"));
+  const Ended fresh = run_to_end(cwd, run_args());
+  EXPECT_EQ(fresh.exit_code, 2);
+  EXPECT_THAT(fresh.err, HasSubstr("holds a finished run (separated), which is kept; give --overwrite"));
+  const Ended replaced = run_to_end(cwd, run_args({"--overwrite"}));
+  EXPECT_EQ(replaced.exit_code, 0) << replaced.err;
+  EXPECT_FALSE(fs::exists(folder / "checkpoints"));
+
+  // Killed before the first checkpoint: run.json says "running" and there is nothing to resume.
+  const fs::path early = dir / "early";
+  fs::create_directories(early);
+  fs::copy(killed, early / "run", fs::copy_options::recursive);
+  fs::remove_all(early / "run" / "checkpoints");
+  const Ended nothing = run_to_end(early, {"run", "--resume", "run"});
+  EXPECT_EQ(nothing.exit_code, 2);
+  EXPECT_THAT(nothing.err, HasSubstr("holds no checkpoint"));
+  const Ended stopped = run_to_end(early, run_args());
+  EXPECT_EQ(stopped.exit_code, 2);
+  EXPECT_THAT(stopped.err,
+              HasSubstr("holds a run that was stopped before its first checkpoint, which is kept"));
+  EXPECT_EQ(run_to_end(early, run_args({"--overwrite"})).exit_code, 0);
+
+  // Killed between a checkpoint and the next rows: resumes (the kill tests above), and even with
+  // --overwrite a fresh run does not destroy a run that can still be continued.
+  const Ended over = run_to_end(killed.parent_path(), run_args({"--overwrite"}));
+  EXPECT_EQ(over.exit_code, 2);
+  EXPECT_THAT(over.err, HasSubstr("holds the checkpoints of an unfinished run"));
+}
+
+TEST(RunFolder, ARefusedResumeChangesNothing) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path pristine = killed_run(dir, "killed", 2000);
+  const fs::path newest = list_checkpoints(pristine).front();
+  const Checkpoint saved = read_checkpoint(newest);
+  ASSERT_EQ(saved.format, checkpoint_format_version);
+
+  // Each damage is applied to a fresh copy of the killed run's folder.
+  struct Damage {
+    const char* name;
+    std::function<void(const fs::path&)> apply;
+    const char* expected;
+  };
+  const auto rewrite_checkpoint = [&](const std::function<void(Checkpoint&)>& edit) {
+    return [&, edit](const fs::path& folder) {
+      Checkpoint c = saved;
+      edit(c);  // re-encoded: the checksum fits, the content does not
+      write_checkpoint(folder / "checkpoints" / newest.filename(), c);
+      fs::remove(folder / "checkpoints" / list_checkpoints(pristine).back().filename());
+    };
+  };
+  const std::vector<Damage> damages = {
+      {"a row inside the checkpointed part edited",
+       [](const fs::path& folder) {
+         std::string text = slurp(folder / "curves.csv");
+         text[text.find("\n0,0,0,") + 1] = '7';
+         io::write_file_atomically(folder / "curves.csv", text);
+       },
+       "curves.csv: its first "},
+      {"breaks.csv cut short", [](const fs::path& folder) { fs::resize_file(folder / "breaks.csv", 100); },
+       "breaks.csv: holds 100 bytes, fewer than the "},
+      {"breaks_bytes = 1", rewrite_checkpoint([](Checkpoint& c) { c.loop.breaks_bytes = 1; }),
+       "breaks.csv: its first 1 bytes are not those its checkpoint recorded"},
+      {"curves_bytes shortened by a row",
+       rewrite_checkpoint([](Checkpoint& c) { c.loop.curves_bytes -= 40; }), "curves.csv: its first "},
+      {"another run's checkpoint (other rows)",
+       rewrite_checkpoint([](Checkpoint& c) { c.loop.curves_hash ^= 1; }), "curves.csv: its first "},
+  };
+  for (const auto& damage : damages) {
+    SCOPED_TRACE(damage.name);
+    const fs::path cwd = dir / "damaged", folder = cwd / "run";
+    fs::remove_all(cwd);
+    fs::create_directories(cwd);
+    fs::copy(pristine, folder, fs::copy_options::recursive);
+    damage.apply(folder);
+    const auto before = folder_bytes(folder);
+    const Ended refused = run_to_end(cwd, {"run", "--resume", "run"});
+    EXPECT_EQ(refused.exit_code, 2) << refused.err;
+    EXPECT_THAT(refused.err, HasSubstr(damage.expected));
+    EXPECT_EQ(folder_bytes(folder), before) << "the refused resume changed the folder";
+  }
+  // The undamaged folder still resumes to the uninterrupted run's files.
+  const Ended resumed = run_to_end(pristine.parent_path(), {"run", "--resume", "run"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_same_outputs(pristine, reference);
+}
+
+TEST(RunFolder, ACheckpointOfRupture01ResumesWithAWarning) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const fs::path folder = killed_run(dir, "old", 1000);
+  for (const auto& file : list_checkpoints(folder)) {
+    Checkpoint c = read_checkpoint(file);
+    c.format = 1;  // as rupture 0.1 wrote it: no prefix hashes
+    write_checkpoint(file, c);
+  }
+  const Ended resumed = run_to_end(folder.parent_path(), {"run", "--resume", "run"});
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_THAT(resumed.err, HasSubstr("(format 1) records only the lengths of curves.csv and breaks.csv"));
+  expect_same_outputs(folder, reference);
 }
 
 }  // namespace

@@ -77,6 +77,9 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 const char* const run = "run {in} -o {dir}/out";
+// The example block's run with the sample from the bad file instead of its lattice.
+const char* const run_sample =
+    "run " RUPTURE_EXAMPLES_DIR "block.toml --set 'sample.lattice=\"\"' --set sample.file={in} -o {dir}/out";
 const char* const convert_own = "sample convert {in} {dir}/out.data";
 const char* const convert_foreign = "sample convert {in} {dir}/out.sample";
 const char* const analyze = "analyze {in} -o {dir}/analysis.json";
@@ -93,13 +96,40 @@ std::vector<BadInput> bad_inputs() {
       {"config_wrong_type", "bad.toml", block_config + "[bonds]\nstiffness = \"soft\"\n", run,
        "bad.toml: bonds.stiffness: expects a number; write e.g. 1e3 (no quotes)"},
       {"config_out_of_range", "bad.toml", block_config + "[bonds]\nbreak_distance = -1\n", run,
-       "bad.toml: bonds.break_distance: b_d = -1 must be > 0; give a positive breaking distance, e.g. 0.05"},
+       "bad.toml: bonds.break_distance: -1 is outside the plausible range [1e-09, 1000] mm; the default is "
+       "0.05 "
+       "(values in mm)"},
       {"config_lattice_cells", "bad.toml", replaced(block_config, "[2, 3, 1]", "[2, 3]"), run,
        "bad.toml: sample.lattice_cells: expects three whole numbers; write e.g. [4, 10, 2]"},
       {"config_missing_sample_file", "bad.toml", "[sample]\nfile = \"nowhere.sample\"\n", run,
        "bad.toml: sample.file: no such file: nowhere.sample; give a path relative to the config's folder, or "
        "an "
        "absolute one"},
+      // Every number finite and plausible: inf, 1e308 and values in the wrong unit stop before the run.
+      {"config_infinite_stiffness", "bad.toml", block_config + "[bonds]\nstiffness = inf\n", run,
+       "bad.toml: bonds.stiffness: inf is not a finite number in the plausible range [1e-06, 1e+12] N/mm; "
+       "the "
+       "default is 1000 (values in N/mm)"},
+      {"config_huge_speed", "bad.toml", block_config + "[loading]\nspeed = 1e308\n", run,
+       "bad.toml: loading.speed: 1e+308 is outside the plausible range [1e-09, 1e+09] mm/s; the default is "
+       "50 "
+       "(values in mm/s)"},
+      {"config_infinite_lattice_radius", "bad.toml",
+       replaced(block_config, "lattice_radius = 0.5", "lattice_radius = inf"), run,
+       "bad.toml: sample.lattice_radius: inf is not a finite number in the plausible range [1e-06, 1000] mm"},
+      {"config_density_in_tonnes", "bad.toml", block_config + "density = 2.5e-10\n", run,
+       "bad.toml: sample.density: 2.5e-10 is outside the plausible range [1e-07, 0.05] g/mm^3; the default "
+       "is "
+       "0.00025 (values in g/mm^3)"},
+      {"config_tiny_dt", "bad.toml", block_config + "[time]\ndt = 1e-308\n", run,
+       "bad.toml: time.dt: 1e-308 is outside the plausible range [1e-18, 1] s"},
+      // A NUL byte used to end the TOML text silently: the keys after it were lost.
+      {"config_nul_byte", "bad.toml",
+       block_config + std::string("[bonds]\nstiffness = 1e3\0\nbreak_distance = 1\n", 44), run,
+       "bad.toml:6: holds a NUL byte (byte 98): this is not a text file, or it is damaged"},
+      {"run_into_root", "good.toml", block_config, "run {in} -o /",
+       "/: is the root folder; a run writes a dozen files into its folder; give a folder of its own, e.g. -o "
+       "run"},
       {"config_override_without_value", "good.toml", block_config,
        "run {in} -o {dir}/out --set bonds.stiffness",
        "--set bonds.stiffness: expects key=value; write e.g. --set bonds.stiffness=1e4"},
@@ -128,6 +158,22 @@ std::vector<BadInput> bad_inputs() {
        "file lists"},
       {"own_sample_bond_to_itself", "bad.sample", replaced(own_sample, "0 1 1\n", "1 1 1\n"), convert_own,
        "bad.sample:8: bond 1-1 joins a particle to itself; a bond joins two particles"},
+      // --- any sample a run is given: plausible numbers, distinct particles, glued layers in order ---
+      {"sample_coincident_particles", "bad.sample", replaced(own_sample, "1 0.5 1.5 0.5", "1 0.5 0.5 0.5"),
+       run_sample,
+       "bad.sample: particles id 0 and id 1 are 0 mm apart, with radii 0.5 and 0.5 mm (a duplicate, or an "
+       "export that lost precision); remove the duplicate"},
+      {"sample_top_below_bottom", "bad.sample",
+       replaced(replaced(own_sample, "0.5 bottom", "0.5 top"), "0.5 top\nbonds", "0.5 bottom\nbonds"),
+       run_sample,
+       "bad.sample: the top glued layer reaches down to y = 0.5 mm, not above the bottom layer's highest y = "
+       "1.5 mm; loading pulls along +y"},
+      {"sample_huge_radius", "bad.sample", replaced(own_sample, "1.5 0.5 0.5 top", "1.5 0.5 1e300 top"),
+       run_sample, "bad.sample: particle id 1 has radius 1e+300 mm, outside [1e-06, 1000] mm"},
+      {"sample_density_in_tonnes", "bad.sample", replaced(own_sample, "density 0.00025", "density 2.5e-10"),
+       run_sample,
+       "bad.sample: density 2.5e-10 g/mm^3 is outside the plausible [1e-07, 0.05] g/mm^3 (a value in t/mm^3? "
+       "multiply by 1e6)"},
       // --- LAMMPS data files ---
       {"lammps_atom_style_without_radius", "bad.data",
        lammps_header + replaced(lammps_atoms, "hybrid sphere bond", "full") + lammps_bonds, convert_foreign,
@@ -191,11 +237,12 @@ std::vector<BadInput> bad_inputs() {
        "bad.toml: no points; add a [grid] with k_n and b_d ranges, or [[points]] entries"},
       // Found by the scan-config fuzzer: a dotted key in [sample] made a table the message did not name.
       {"scan_sample_table_value", "bad.toml", scan_config + "[sample]\nx.y = 3\n", scan,
-       "bad.toml: sample.x: a value that is not a string, number, boolean or array; write it as in a run config"},
+       "bad.toml: sample.x: a value that is not a string, number, boolean or array; write it as in a run "
+       "config"},
       // [scan] set entries become run-config overrides: the message names the scan file, not a --set.
       {"scan_set_without_value", "bad.toml",
-       "[scan]\nbase = \"" RUPTURE_EXAMPLES_DIR "block.toml\"\nset = [\"bonds.stiffness\"]\n" + scan_grid, scan,
-       "bad.toml ([sample] or [scan] set): bonds.stiffness: expects key=value"},
+       "[scan]\nbase = \"" RUPTURE_EXAMPLES_DIR "block.toml\"\nset = [\"bonds.stiffness\"]\n" + scan_grid,
+       scan, "bad.toml ([sample] or [scan] set): bonds.stiffness: expects key=value"},
   };
 }
 
@@ -273,11 +320,12 @@ TEST(BadCheckpoint, EachDamageIsNamedWithTheFieldAndTheFix) {
   std::string flipped = good, foreign = good, future = good;
   flipped[good.size() / 2] ^= 0x01;
   foreign[0] = 'X';
-  future[8] = 2;  // the format version (u32, little-endian) follows the 8-byte magic
+  future[8] = 3;  // the format version (u32, little-endian) follows the 8-byte magic
   const std::vector<BadCheckpoint> cases = {
       {"empty", "", "step.ckpt: header: 0 bytes is too short for a checkpoint (truncated?); "},
       {"not a checkpoint", foreign, "step.ckpt: magic: not a rupture checkpoint; "},
-      {"newer format", future, "step.ckpt: version: format version 2 is not the 1 this rupture reads; "},
+      {"newer format", future,
+       "step.ckpt: version: format version 3 is not one this rupture reads (1 to 2); "},
       {"truncated", good.substr(0, good.size() - 100), "step.ckpt: payload_size: says "},
       {"one bit flipped", flipped, "step.ckpt: checksum: is "},
   };
