@@ -79,7 +79,7 @@ void run(const ScanOptions& o) {
   scan::ScanConfig config = scan::load_scan_config(o.target);
   if (!o.output.empty()) config.output = o.output;
   const Sample sample = loading::resolve_sample(scan::base_config(config));
-  const scan::Plan plan = scan::make_plan(config, scan::mean_rest_length(sample));
+  const scan::Plan plan = scan::make_plan(config, sample);
   if (o.dry_run) {
     print_plan(plan);
     return;

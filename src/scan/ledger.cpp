@@ -126,11 +126,21 @@ PointStatus point_status(const Plan& plan, const Point& point) {
 }
 
 void check_result_matches(const Plan& plan, const Point& point, const nlohmann::json& result) {
-  const auto now = comparable(loading::to_json(point_config(plan, point, 1)));
-  if (result.contains("config") && comparable(result.at("config")) == now) return;
-  throw InputError((point_folder(plan, point) / "result.json").string(),
-                   "this point was computed with a different run config than the scan now gives it",
-                   "restore the scan config and its base config, or give [scan] output a new folder");
+  const std::string file = (point_folder(plan, point) / "result.json").string();
+  const std::string fix =
+      "restore them, or give [scan] output a new folder (or remove " + file + " to recompute it)";
+  // Results of rupture 0.1 carry no fingerprint: only their config can be compared.
+  const std::string now = fingerprint_text(plan.sample_fingerprint);
+  if (result.contains("sample_fingerprint") && result.at("sample_fingerprint") != now)
+    throw InputError(
+        file,
+        fmt::format("this point was computed on another sample (fingerprint {}; the sample now gives {})",
+                    result.at("sample_fingerprint").get<std::string>(), now),
+        fix);
+  if (!result.contains("config") ||
+      comparable(result.at("config")) != comparable(loading::to_json(point_config(plan, point, 1))))
+    throw InputError(file, "this point was computed with a different run config than the scan now gives it",
+                     fix);
 }
 
 std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, const Sample& sample,
@@ -201,6 +211,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
       {"attempt", attempt.filename().string()},
       {"command", command},
       {"config", loading::to_json(config)},
+      {"sample_fingerprint", fingerprint_text(plan.sample_fingerprint)},
       {"status", status},
       {"row", row}};
   io::write_json_atomically(folder / "result.json", result);  // last: the point is now finished

@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 
 #include "core/error.hpp"
+#include "dem/system.hpp"
 #include "io/atomic_file.hpp"
+#include "loading/checkpoint.hpp"
 
 namespace rupture::scan {
 
@@ -64,7 +67,8 @@ class Section {
   const toml::table* table_ = nullptr;
 };
 
-double round6(double value) { return std::stod(fmt::format("{:.6g}", value)); }
+// strtod, not stod: a subnormal such as 1e-308 must reach the range check, not throw.
+double round6(double value) { return std::strtod(fmt::format("{:.6g}", value).c_str(), nullptr); }
 
 // A TOML value as the text of a --set override; `where` names it in an error.
 std::string toml_text(const toml::node& node, const std::string& where) {
@@ -106,10 +110,11 @@ LogRange read_range(const Section& grid, const std::string& key) {
       range.count = int(*value);
     }
   }
-  if (!(range.from > 0) || !(range.to > 0) || range.count < 1 || range.count > 100000)
+  if (!(range.from > 0) || !(range.to > 0) || !std::isfinite(range.from) || !std::isfinite(range.to) ||
+      range.count < 1 || range.count > 100000)
     throw InputError(grid.where(key),
                      fmt::format("from = {}, to = {}, count = {}", range.from, range.to, range.count),
-                     "give from > 0, to > 0 and a count of 1 or more");
+                     "give finite from > 0, to > 0 and a count of 1 or more");
   return range;
 }
 
@@ -191,7 +196,7 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
       wrapper.insert("points", *entry);
       const Section point(wrapper, "points", {"k_n", "b_d"}, source);
       const double k = point.number("k_n", 0.0), b = point.number("b_d", 0.0);
-      if (!(k > 0) || !(b > 0))
+      if (!(k > 0) || !(b > 0) || !std::isfinite(k) || !std::isfinite(b))
         throw InputError(fmt::format("{}: points[{}]", source, i), "needs k_n > 0 (N/mm) and b_d > 0 (mm)",
                          "write k_n = 1e3 and b_d = 0.05");
       c.listed.emplace_back(round6(k), round6(b));
@@ -199,6 +204,13 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
   }
   if (!c.grid_k_n && c.listed.empty())
     throw InputError(source, "no points", "add a [grid] with k_n and b_d ranges, or [[points]] entries");
+  if (const double points = c.grid_k_n
+                                ? double(c.grid_k_n->count) * c.grid_b_d->count + double(c.listed.size())
+                                : double(c.listed.size());
+      points > double(max_points))
+    throw InputError(source,
+                     fmt::format("{:g} points, more than the {} a scan folder holds", points, max_points),
+                     "split the scan into several configs with their own [scan] output");
   const Section rules(root, "rules",
                       {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_min_steps",
                        "ramp_max_steps", "max_strain", "max_strain_factor", "max_strain_min"},
@@ -282,6 +294,33 @@ std::vector<double> log_spaced(const LogRange& range) {
   return values;
 }
 
+namespace {
+
+void check_dt(const Plan& plan, const Sample& sample, double dt, const std::filesystem::path& file) {
+  const loading::RunConfig first = point_config(plan, plan.points.front(), 1);
+  const double limit_at_first = dem::System(sample, first.dem_params(sample.density)).critical_dt();
+  std::vector<std::string> too_large;
+  double smallest = INFINITY;
+  for (const auto& p : plan.points) {
+    const double limit = limit_at_first * std::sqrt(first.bond_stiffness / p.k_n);
+    smallest = std::min(smallest, limit);
+    if (dt > limit) too_large.push_back(fmt::format("{} (limit {:.3g} s)", p.name, limit));
+  }
+  if (too_large.empty()) return;
+  const std::size_t shown = std::min<std::size_t>(3, too_large.size());
+  std::string names;
+  for (std::size_t i = 0; i < shown; ++i) names += (i ? ", " : "") + too_large[i];
+  throw InputError(
+      file.string() + ": rules.dt",
+      fmt::format("dt = {:.3g} s exceeds the stability limit at {} of {} points: {}{}", dt, too_large.size(),
+                  plan.points.size(), names, too_large.size() > shown ? ", ..." : ""),
+      fmt::format("use dt = \"auto\", or dt <= {:.3g} s", smallest));
+}
+
+}  // namespace
+
+std::string fingerprint_text(std::uint64_t fingerprint) { return fmt::format("{:016x}", fingerprint); }
+
 double mean_rest_length(const Sample& sample) {
   double sum = 0.0;
   for (const auto& bond : sample.bonds) sum += bond.rest_length;
@@ -290,10 +329,16 @@ double mean_rest_length(const Sample& sample) {
 
 std::string point_name(double k_n, double b_d) { return fmt::format("kn_{}_bd_{}", k_n, b_d); }
 
-Plan make_plan(const ScanConfig& config, double rest_length) {
+Plan make_plan(const ScanConfig& config, const Sample& sample) {
   const loading::RunConfig base = base_config(config);
+  const double rest_length = mean_rest_length(sample);
   Plan plan;
   plan.folder = config.output;
+  if (std::error_code ec;
+      std::filesystem::exists(plan.folder, ec) && !std::filesystem::is_directory(plan.folder, ec))
+    throw InputError(plan.folder.string(), "is a file, not a scan folder",
+                     "give [scan] output (or -o) a folder path");
+  plan.sample_fingerprint = loading::sample_fingerprint(sample);
   plan.base = config.base;
   plan.scan_config = to_json(config);
   std::vector<std::pair<double, double>> pairs;
@@ -335,7 +380,10 @@ Plan make_plan(const ScanConfig& config, double rest_length) {
     p.overrides.push_back(fmt::format("stop.max_strain={}", p.max_strain));
     plan.points.push_back(std::move(p));
   }
-  for (const auto& p : plan.points) (void)point_config(plan, p, 1);  // bad input fails before anything runs
+  // Bad input fails before anything runs: every point's config, and a given dt against each point's
+  // stability limit, which scales as 1/sqrt(k_n) (every spring of the sample is a multiple of k_n).
+  for (const auto& p : plan.points) (void)point_config(plan, p, 1);
+  if (config.dt && !base.allow_unstable_dt) check_dt(plan, sample, *config.dt, config.file);
   return plan;
 }
 
@@ -361,7 +409,10 @@ nlohmann::json to_json(const Plan& plan) {
                       {"ramp_steps", p.ramp_steps},
                       {"max_strain_percent", p.max_strain},
                       {"overrides", p.overrides}});
-  return {{"base", plan.base.string()}, {"scan_config", plan.scan_config}, {"points", points}};
+  return {{"base", plan.base.string()},
+          {"scan_config", plan.scan_config},
+          {"sample_fingerprint", fingerprint_text(plan.sample_fingerprint)},
+          {"points", points}};
 }
 
 Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path& folder) {
@@ -369,6 +420,9 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
   plan.folder = folder;
   plan.base = document.at("base").get<std::string>();
   plan.scan_config = document.at("scan_config");
+  if (document.contains("sample_fingerprint"))
+    plan.sample_fingerprint =
+        std::strtoull(document.at("sample_fingerprint").get<std::string>().c_str(), nullptr, 16);
   for (const auto& j : document.at("points")) {
     Point p;
     p.index = j.at("index").get<std::size_t>();

@@ -63,11 +63,15 @@ struct Point {
   std::vector<std::string> overrides;  // applied to the base config (threads excluded)
 };
 
+// The most points one scan folder takes (a grid of 10^8 would only exhaust memory).
+inline constexpr std::size_t max_points = 100000;
+
 struct Plan {
-  std::filesystem::path folder;  // the scan folder
-  std::filesystem::path base;    // the base run config
-  nlohmann::json scan_config;    // to_json(ScanConfig), for scan.json
-  std::vector<Point> points;     // grid (k_n slowest) then the list; duplicates dropped
+  std::filesystem::path folder;          // the scan folder
+  std::filesystem::path base;            // the base run config
+  std::uint64_t sample_fingerprint = 0;  // loading::sample_fingerprint of the sample every point runs on
+  nlohmann::json scan_config;            // to_json(ScanConfig), for scan.json
+  std::vector<Point> points;             // grid (k_n slowest) then the list; duplicates dropped
 };
 
 std::string point_name(double k_n, double b_d);
@@ -75,9 +79,13 @@ std::string point_name(double k_n, double b_d);
 // Mean bond rest length (mm): turns b_d into the strain at which bonds start to break.
 double mean_rest_length(const Sample& sample);
 
-// Builds the plan: every point's config is loaded (and so checked) now, before anything runs.
-// `mean_rest_length` (mm) is the sample's, for the scaled stop rule.
-Plan make_plan(const ScanConfig& config, double mean_rest_length);
+// Builds the plan for `sample` (the base config's): every point's config is loaded (and so checked)
+// now, before anything runs, and a given [rules] dt is checked against every point's stability
+// limit. Throws InputError when the output folder is a file.
+Plan make_plan(const ScanConfig& config, const Sample& sample);
+
+// A sample fingerprint as 16 hex digits (JSON numbers lose the last bits of a 64-bit integer).
+std::string fingerprint_text(std::uint64_t fingerprint);
 
 // The run config of one point, with `threads` OpenMP threads.
 loading::RunConfig point_config(const Plan& plan, const Point& point, int threads);

@@ -5,6 +5,7 @@
 #include "scan/scan.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -17,6 +18,9 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "dem/system.hpp"
+#include "sample/formats.hpp"
+#include "sample/lattice.hpp"
 #include "scan/farm.hpp"
 #include "scan/results.hpp"
 #include "scan_support.hpp"
@@ -26,14 +30,20 @@ namespace rupture::scan {
 namespace {
 
 using rupture::testing::run_rupture;
+using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using test_support::physics;
-using rupture::testing::shell_quoted;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
 
 void write(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
+
+// A block whose bonds are all 1 mm long (radius 0.5 mm): the sample the plan tests scan.
+const Sample& unit_block() {
+  static const Sample block = make_cubic_block(2, 3, 1, 0.5);
+  return block;
+}
 
 // A scan of the block lattice grown to 6 x 16 x 3 particles and pulled slower, so that each point takes
 // long enough to be killed in the middle of one.
@@ -58,7 +68,7 @@ TEST(ScanPlan, RulesScaleTheRampAndTheStopWithBreakingDistance) {
   TempDir dir;
   const auto config = load_scan_config(examples + "scan-block.toml");
   // block.toml: simple cubic, radius 0.5 mm, so every bond's rest length is 1 mm.
-  const Plan plan = make_plan(config, 1.0);
+  const Plan plan = make_plan(config, unit_block());
   ASSERT_EQ(plan.points.size(), 6u);
   EXPECT_EQ(plan.points[0].name, "kn_100_bd_0.002");
   EXPECT_EQ(plan.points[1].name, "kn_100_bd_0.004");  // k_n varies slowest
@@ -77,7 +87,7 @@ TEST(ScanPlan, RulesScaleTheRampAndTheStopWithBreakingDistance) {
 TEST(ScanPlan, PaperScanSpansTheRangesOfSectionFive) {
   // The paper's scan: k_n from 10 to 10^7 N/mm, b_d from 10^-3 to 5 mm; the ramp 10^4 steps where
   // bonds break at large strains and up to 10^6 steps where they break at small ones.
-  const Plan plan = make_plan(load_scan_config(examples + "scan-tissue.toml"), 1.0);
+  const Plan plan = make_plan(load_scan_config(examples + "scan-tissue.toml"), unit_block());
   ASSERT_EQ(plan.points.size(), 195u);
   EXPECT_EQ(plan.points.front().name, "kn_10_bd_0.001");
   EXPECT_EQ(plan.points.back().name, "kn_10000000_bd_5");
@@ -97,7 +107,7 @@ TEST(ScanPlan, ListedPointsFollowTheGridWithoutDuplicates) {
             "block.toml'\n[grid]\nk_n = { from = 1e2, to = 1e3, count = 2 }\n"
             "b_d = { from = 0.002, to = 0.002, count = 1 }\n[[points]]\nk_n = 1e5\nb_d = 0.05\n"
             "[[points]]\nk_n = 100\nb_d = 0.002\n");
-  const Plan plan = make_plan(load_scan_config(dir / "s.toml"), 1.0);
+  const Plan plan = make_plan(load_scan_config(dir / "s.toml"), unit_block());
   ASSERT_EQ(plan.points.size(), 3u);
   EXPECT_EQ(plan.points[2].name, "kn_100000_bd_0.05");
   EXPECT_EQ(plan.points[2].index, 2u);
@@ -108,7 +118,7 @@ TEST(ScanPlan, BadConfigsNameTheKeyAndTheFix) {
   const auto message = [&](const std::string& text) {
     write(dir / "bad.toml", text);
     try {
-      (void)make_plan(load_scan_config(dir / "bad.toml"), 1.0);
+      (void)make_plan(load_scan_config(dir / "bad.toml"), unit_block());
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -130,6 +140,40 @@ TEST(ScanPlan, BadConfigsNameTheKeyAndTheFix) {
               "[grid]\nk_n = { from = 1, to = 2, count = 2.5 }\nb_d = { from = 1, to = 2, count = 2 }\n")
           .find("grid.k_n.count"),
       std::string::npos);
+  // Non-finite or subnormal values, grids too large to hold, and a given dt above some point's
+  // stability limit are refused with the key, before anything runs.
+  EXPECT_NE(
+      message(base +
+              "[grid]\nk_n = { from = 1, to = inf, count = 2 }\nb_d = { from = 1, to = 2, count = 2 }\n")
+          .find("grid.k_n: from = 1, to = inf"),
+      std::string::npos);
+  EXPECT_NE(message(base + "[[points]]\nk_n = 1e-308\nb_d = 1\n")
+                .find("bonds.stiffness: 1e-308 is outside the plausible range"),
+            std::string::npos);
+  EXPECT_NE(
+      message(
+          base +
+          "[grid]\nk_n = { from = 1, to = 2, count = 10000 }\nb_d = { from = 1, to = 2, count = 10000 }\n")
+          .find("1e+08 points, more than the 100000 a scan folder holds"),
+      std::string::npos);
+  const std::string dt_limit =
+      message(base +
+              "[grid]\nk_n = { from = 1e2, to = 1e6, count = 3 }\nb_d = { from = 1, to = 1, count = 1 }\n"
+              "[rules]\ndt = 1e-7\n");
+  // The limits scale as 1/sqrt(k_n) from the first point's; the engine gives the same at k_n = 1e4
+  // on the plan's sample.
+  const loading::RunConfig at_1e4 = loading::load_config(examples + "block.toml", {"bonds.stiffness=1e4"});
+  const double limit = dem::System(unit_block(), at_1e4.dem_params(unit_block().density)).critical_dt();
+  EXPECT_NE(
+      dt_limit.find(fmt::format("bad.toml: rules.dt: dt = 1e-07 s exceeds the stability limit at 2 of 3 "
+                                "points: kn_10000_bd_1 (limit {:.3g} s), kn_1000000_bd_1",
+                                limit)),
+      std::string::npos)
+      << dt_limit << " (engine: " << limit << " s)";
+  write(dir / "file", "");
+  EXPECT_NE(message(base + "output = '" + (dir / "file").string() + "'\n[[points]]\nk_n = 1\nb_d = 1\n")
+                .find("is a file, not a scan folder"),
+            std::string::npos);
   // A bad override reaches the run config's own check before anything runs.
   EXPECT_NE(
       message(base + "set = [\"bonds.nothing=1\"]\n[[points]]\nk_n = 1\nb_d = 1\n").find("bonds.nothing"),
@@ -381,6 +425,27 @@ TEST(ScanCommand, ChangedConfigOnAnOldFolderIsRefused) {
   const auto r = run_rupture("scan " + shell_quoted(dir / "s.toml"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("different run config"), std::string::npos) << r.err;
+}
+
+TEST(ScanCommand, AChangedSampleFileOnAnOldFolderIsRefused) {
+  TempDir dir;
+  Sample sample = make_cubic_block(4, 8, 2, 0.5);
+  save_sample(sample, dir / "block.sample");
+  write(dir / "base.toml",
+        "[sample]\nfile = 'block.sample'\n[bonds]\nbreak_distance = 0.002\n[loading]\nspeed = 500.0\n"
+        "ramp_steps = 500\n[stop]\nmax_strain = 20.0\nseparation_check_interval = 100\n[output]\ninterval = "
+        "50\n"
+        "[run]\nthreads = 1\n");
+  write(dir / "s.toml", "[scan]\nbase = 'base.toml'\noutput = '" + (dir / "out").string() +
+                            "'\n[[points]]\nk_n = 100\nb_d = 0.002\n");
+  const auto first = run_rupture("scan " + shell_quoted(dir / "s.toml"));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  sample.position[5].x += 1e-9;  // mm: one coordinate, moved by a nanometre
+  save_sample(sample, dir / "block.sample");
+  const auto r = run_rupture("scan " + shell_quoted(dir / "s.toml"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("this point was computed on another sample (fingerprint "), std::string::npos)
+      << r.err;
 }
 
 }  // namespace
