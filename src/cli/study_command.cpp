@@ -78,7 +78,7 @@ void add_study_command(CLI::App& app, int& exit_code) {
     const fs::path out(o->out);
     fs::create_directories(out);
     const io::FolderLock lock(out, "rupture study --out " + o->out);
-    const std::string config_text = o->config.empty() ? default_study_config : io::read_text_file(o->config);
+    const std::string config_text = o->config.empty() ? default_study_config : io::read_text_file(o->config, io::max_config_bytes);
     const fs::path config_file = out / "study.toml";
     io::write_file_atomically(config_file, config_text);
 

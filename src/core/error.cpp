@@ -21,12 +21,19 @@ std::string one_line(const std::string& text) {
   return out;
 }
 
+// A safety net behind excerpt(): no part of a message runs past a few lines' worth, whatever a
+// caller quoted (the fix, which may list every valid key, is left whole).
 std::string compose(const std::string& where, const std::string& problem, const std::string& fix) {
-  std::string message = where.empty() ? problem : where + ": " + problem;
+  std::string message =
+      where.empty() ? excerpt(problem, 1000) : excerpt(where, 400) + ": " + excerpt(problem, 1000);
   if (!fix.empty()) message += "; " + fix;
   return one_line(message);
 }
 }  // namespace
+
+std::string excerpt(std::string_view text, std::size_t max) {
+  return text.size() <= max ? std::string(text) : std::string(text.substr(0, max - 3)) + "...";
+}
 
 InputError::InputError(const std::string& where, const std::string& problem, const std::string& fix)
     : std::runtime_error(compose(where, problem, fix)) {}

@@ -44,15 +44,15 @@ std::map<std::string, double> parse_parameters(std::string_view name, std::strin
     text = comma == std::string_view::npos ? std::string_view{} : text.substr(comma + 1);
     const auto equals = item.find('=');
     if (equals == std::string_view::npos)
-      throw InputError(dist_option, fmt::format("'{}' is not of the form key=value", item), usage);
+      throw InputError(dist_option, fmt::format("'{}' is not of the form key=value", excerpt(item)), usage);
     const std::string key(trim(item.substr(0, equals)));
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      throw InputError(dist_option, fmt::format("unknown parameter '{}' for {}", key, name), usage);
+      throw InputError(dist_option, fmt::format("unknown parameter '{}' for {}", excerpt(key), name), usage);
     double value = 0.0;
     if (!parse_number(item.substr(equals + 1), value))
-      throw InputError(dist_option,
-                       fmt::format("{}='{}' is not a finite number", key, trim(item.substr(equals + 1))),
-                       usage);
+      throw InputError(
+          dist_option,
+          fmt::format("{}='{}' is not a finite number", key, excerpt(trim(item.substr(equals + 1)))), usage);
     if (!values.emplace(key, value).second)
       throw InputError(dist_option, fmt::format("parameter '{}' given twice", key), usage);
   }
@@ -163,7 +163,7 @@ std::vector<double> parse_thresholds(std::string_view text, const std::string& s
     double value = 0.0;
     const std::string where = fmt::format("{}:{}", source, line_number);
     if (!parse_number(line, value))
-      throw InputError(where, fmt::format("'{}' is not a number", line),
+      throw InputError(where, fmt::format("'{}' is not a number", excerpt(line)),
                        "write one threshold (a breaking strain) per line; '#' starts a comment");
     if (value < 0.0)
       throw InputError(where, fmt::format("threshold {} is negative", value),
@@ -202,7 +202,7 @@ std::unique_ptr<StrengthDistribution> parse_distribution_spec(
     if (path.empty()) throw InputError(dist_option, "file needs a path", "e.g. --dist file:thresholds.txt");
     return std::make_unique<Empirical>(parse_thresholds(read_text(path), path), path);
   }
-  throw InputError(dist_option, fmt::format("unknown distribution '{}'", name), dist_forms);
+  throw InputError(dist_option, fmt::format("unknown distribution '{}'", excerpt(name)), dist_forms);
 }
 
 }  // namespace rupture::fbm

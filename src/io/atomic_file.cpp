@@ -6,15 +6,17 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "core/error.hpp"
 
 namespace rupture::io {
 
 namespace fs = std::filesystem;
+
+const char* const nul_fix =
+    "give the text file (TOML, CSV) itself; a copy interrupted mid-way can end in NULs";
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
   temporary_ = target_;
@@ -70,16 +72,53 @@ void write_json_atomically(const fs::path& target, const nlohmann::json& documen
   write_file_atomically(target, document.dump(2) + "\n");
 }
 
-std::string read_text_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+namespace {
+
+std::string read_whole(const fs::path& path, std::uint64_t max_bytes, bool text) {
+  std::unique_ptr<std::FILE, decltype(&std::fclose)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file)
     throw InputError(path.string(), fmt::format("cannot open file ({})", std::strerror(errno)),
                      "check the path and its permissions");
+  const auto too_large = [&] {
+    return InputError(path.string(),
+                      fmt::format("holds more than the {:.3g} MB this reader takes", double(max_bytes) / 1e6),
+                      "is it the right file? (a device such as /dev/zero never ends)");
+  };
+  std::error_code ec;
+  if (const auto size = fs::file_size(path, ec); !ec && size > max_bytes) throw too_large();
+  std::string content;
+  if (!ec) content.reserve(std::size_t(fs::file_size(path, ec)));
+  std::size_t lines_before = 0;  // newlines before the current chunk, for the NUL's line number
+  char chunk[1 << 16];
+  for (;;) {
+    const std::size_t got = std::fread(chunk, 1, sizeof chunk, file.get());
+    if (got == 0) break;
+    if (content.size() + got > max_bytes) throw too_large();
+    if (text && std::memchr(chunk, '\0', got) != nullptr) {
+      const std::string_view part(chunk, got);
+      const auto nul = part.find('\0');
+      const auto line =
+          lines_before + 1 + std::size_t(std::count(part.begin(), part.begin() + std::ptrdiff_t(nul), '\n'));
+      throw InputError(fmt::format("{}:{}", path.string(), line),
+                       fmt::format("holds a NUL byte (byte {}): this is not a text file, or it is damaged",
+                                   content.size() + nul + 1),
+                       nul_fix);
+    }
+    if (text) lines_before += std::size_t(std::count(chunk, chunk + got, '\n'));
+    content.append(chunk, got);
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(path.string(), "read error", "check the file");
-  return std::move(buffer).str();
+  if (std::ferror(file.get())) throw InputError(path.string(), "read error", "check the file");
+  return content;
+}
+
+}  // namespace
+
+std::string read_file(const fs::path& path, std::uint64_t max_bytes) {
+  return read_whole(path, max_bytes, false);
+}
+
+std::string read_text_file(const fs::path& path, std::uint64_t max_bytes) {
+  return read_whole(path, max_bytes, true);
 }
 
 void require_text(std::string_view text, const std::string& source) {

@@ -3,6 +3,7 @@
 // disk never leaves a half-written output and never destroys the previous version.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
@@ -41,8 +42,17 @@ void write_json_atomically(const std::filesystem::path& target, const nlohmann::
 // disk, or the file size limit (EFBIG, `ulimit -f`; SIGXFSZ is ignored so that it arrives here).
 std::string write_failure(const std::filesystem::path& path, int error);
 
-// Reads a whole file; throws InputError naming the file when it cannot be read.
-std::string read_text_file(const std::filesystem::path& path);
+// The largest file a reader takes unless it says otherwise, and the largest config (TOML) file:
+// a device such as /dev/zero, or the wrong file, is refused instead of exhausting memory.
+inline constexpr std::uint64_t max_file_bytes = std::uint64_t(8) << 30;
+inline constexpr std::uint64_t max_config_bytes = std::uint64_t(16) << 20;
+
+// Reads a whole file of at most `max_bytes`; throws InputError naming the file when it cannot be
+// read or is larger.
+std::string read_file(const std::filesystem::path& path, std::uint64_t max_bytes = max_file_bytes);
+// The same for a text file, which must hold no NUL byte (require_text): a binary file is refused
+// at its first NUL, before the rest of it is read.
+std::string read_text_file(const std::filesystem::path& path, std::uint64_t max_bytes = max_file_bytes);
 
 // Throws InputError naming `source` and the line when `text` holds a NUL byte: a binary or damaged
 // file, which a parser would otherwise read only up to that byte (a TOML file's later keys lost).

@@ -47,11 +47,6 @@ bool parse_double(std::string_view text, double& value) {
   return result.ec == std::errc() && result.ptr == end && !text.empty();
 }
 
-// A message quotes at most 80 bytes of the input.
-std::string capped(std::string_view text) {
-  return text.size() <= 80 ? std::string(text) : std::string(text.substr(0, 77)) + "...";
-}
-
 }  // namespace
 
 std::string column_name(std::string_view field) {
@@ -81,95 +76,105 @@ std::size_t CsvTable::require(std::string_view name) const {
                    fmt::format("the header has: {}", available.empty() ? "(nothing)" : available));
 }
 
+CsvLineReader::CsvLineReader(std::string source) { table_.source = std::move(source); }
+
+void CsvLineReader::set_header(std::string_view line, std::size_t number) {
+  comma_separated_ = line.find(',') != std::string_view::npos;
+  split_fields(line, comma_separated_, fields_);
+  for (std::size_t c = 0; c < fields_.size(); ++c) {
+    std::string name(fields_[c]);
+    // pandas' to_csv() writes its index as a first column with an empty name.
+    if (name.empty() && c == 0 && fields_.size() > 1) name = "index";
+    if (name.empty())
+      throw InputError(fmt::format("{}:{}", table_.source, number), "empty column name in the header",
+                       "give every column a name, e.g. strain[%],force[N]");
+    for (std::size_t d = 0; d < table_.header.size(); ++d)
+      if (column_name(table_.header[d]) == column_name(name))
+        throw InputError(
+            fmt::format("{}:{}", table_.source, number),
+            fmt::format("columns {} and {} are both called '{}'", d + 1, c + 1, excerpt(column_name(name))),
+            "give every column its own name");
+    table_.header.push_back(std::move(name));
+  }
+  table_.columns.resize(table_.header.size());
+  have_header_ = true;
+}
+
+bool CsvLineReader::all_numbers(std::string_view line) {
+  split_fields(line, line.find(',') != std::string_view::npos, fields_);
+  double value;
+  for (auto f : fields_)
+    if (!parse_double(f, value)) return false;
+  return !fields_.empty();
+}
+
+bool CsvLineReader::add_line(std::string_view text) {
+  require_text(text, table_.source);
+  ++line_number_;
+  if (line_number_ == 1 && text.substr(0, 3) == "\xEF\xBB\xBF")
+    text.remove_prefix(3);  // a UTF-8 byte order mark
+  const std::string_view line = trim(text);
+  if (line.empty()) return false;
+  if (line.front() == '#') {
+    if (!have_header_) {
+      table_.comments.emplace_back(trim(line.substr(1)));
+      last_comment_line_ = line_number_;
+    }
+    return false;
+  }
+  if (!have_header_) {
+    // LAMMPS (fix ave/time, fix print) and Yade (saveDataTxt) name the columns in the last '#'
+    // line before the numbers.
+    if (all_numbers(line) && last_comment_line_ > 0) {
+      const std::string names = table_.comments.back();
+      table_.comments.pop_back();
+      set_header(names, last_comment_line_);
+    } else {
+      set_header(line, line_number_);
+      return false;
+    }
+  }
+  split_fields(line, comma_separated_, fields_);
+  const auto where = [&] { return fmt::format("{}:{}", table_.source, line_number_); };
+  if (fields_.size() != table_.header.size())
+    throw InputError(where(),
+                     fmt::format("{} fields where the header has {}", fields_.size(), table_.header.size()),
+                     "every row needs one value per header column");
+  row_.resize(fields_.size());
+  for (std::size_t c = 0; c < fields_.size(); ++c)
+    if (!parse_double(fields_[c], row_[c]))
+      throw InputError(where(),
+                       fmt::format("column {} ('{}'): '{}' is not a number", c + 1, excerpt(table_.header[c]),
+                                   excerpt(fields_[c])),
+                       "use plain decimal numbers such as 1.5e-3");
+  return true;
+}
+
+const CsvTable& CsvLineReader::header() const {
+  if (!have_header_)
+    throw InputError(table_.source, "no header line", "the first non-comment line must name the columns");
+  return table_;
+}
+
 CsvTable parse_csv(std::string_view text, const std::string& source) {
   require_text(text, source);
+  CsvLineReader reader(source);
   CsvTable table;
-  table.source = source;
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // a UTF-8 byte order mark
-  std::vector<std::string_view> fields;
-  std::size_t line_number = 0, pos = 0;
-  bool have_header = false, comma_separated = true;
-  std::string_view last_comment;
-  std::size_t last_comment_line = 0;
-  const auto set_header = [&](std::string_view line, std::size_t number) {
-    comma_separated = line.find(',') != std::string_view::npos;
-    split_fields(line, comma_separated, fields);
-    for (std::size_t c = 0; c < fields.size(); ++c) {
-      std::string name(fields[c]);
-      // pandas' to_csv() writes its index as a first column with an empty name.
-      if (name.empty() && c == 0 && fields.size() > 1) name = "index";
-      if (name.empty()) {
-        throw InputError(fmt::format("{}:{}", source, number), "empty column name in the header",
-                         "give every column a name, e.g. strain[%],force[N]");
-      }
-      for (std::size_t d = 0; d < table.header.size(); ++d) {
-        if (column_name(table.header[d]) == column_name(name)) {
-          throw InputError(
-              fmt::format("{}:{}", source, number),
-              fmt::format("columns {} and {} are both called '{}'", d + 1, c + 1, capped(column_name(name))),
-              "give every column its own name");
-        }
-      }
-      table.header.push_back(std::move(name));
-    }
-    table.columns.resize(table.header.size());
-    have_header = true;
-  };
-  const auto all_numbers = [&](std::string_view line) {
-    split_fields(line, line.find(',') != std::string_view::npos, fields);
-    double value;
-    for (auto f : fields) {
-      if (!parse_double(f, value)) return false;
-    }
-    return !fields.empty();
-  };
-  while (pos < text.size()) {
+  for (std::size_t pos = 0; pos < text.size();) {
     std::size_t eol = text.find('\n', pos);
     if (eol == std::string_view::npos) eol = text.size();
-    const std::string_view line = trim(text.substr(pos, eol - pos));
+    if (reader.add_line(text.substr(pos, eol - pos))) {
+      if (table.columns.empty()) table.columns.resize(reader.row().size());
+      for (std::size_t c = 0; c < reader.row().size(); ++c) table.columns[c].push_back(reader.row()[c]);
+      table.line_of_row.push_back(reader.line_number());
+    }
     pos = eol + 1;
-    ++line_number;
-    if (line.empty()) continue;
-    if (line.front() == '#') {
-      if (!have_header) {
-        table.comments.emplace_back(trim(line.substr(1)));
-        last_comment = trim(line.substr(1));
-        last_comment_line = line_number;
-      }
-      continue;
-    }
-    if (!have_header) {
-      // LAMMPS (fix ave/time, fix print) and Yade (saveDataTxt) name the columns in the last
-      // '#' line before the numbers.
-      if (all_numbers(line) && !last_comment.empty()) {
-        table.comments.pop_back();
-        set_header(last_comment, last_comment_line);
-      } else {
-        set_header(line, line_number);
-        continue;
-      }
-    }
-    split_fields(line, comma_separated, fields);
-    if (fields.size() != table.header.size()) {
-      throw InputError(fmt::format("{}:{}", source, line_number),
-                       fmt::format("{} fields where the header has {}", fields.size(), table.header.size()),
-                       "every row needs one value per header column");
-    }
-    for (std::size_t c = 0; c < fields.size(); ++c) {
-      double value;
-      if (!parse_double(fields[c], value)) {
-        throw InputError(fmt::format("{}:{}", source, line_number),
-                         fmt::format("column {} ('{}'): '{}' is not a number", c + 1, capped(table.header[c]),
-                                     capped(fields[c])),
-                         "use plain decimal numbers such as 1.5e-3");
-      }
-      table.columns[c].push_back(value);
-    }
-    table.line_of_row.push_back(line_number);
   }
-  if (!have_header) {
-    throw InputError(source, "no header line", "the first non-comment line must name the columns");
-  }
+  const CsvTable& header = reader.header();
+  table.source = header.source;
+  table.comments = header.comments;
+  table.header = header.header;
+  table.columns.resize(table.header.size());
   return table;
 }
 

@@ -36,6 +36,29 @@ struct CsvTable {
 std::string column_name(std::string_view field);
 std::string column_unit(std::string_view field);
 
+// The reader behind parse_csv, fed one line at a time (without its '\n'), so that a file still
+// being written can be read as it grows (rupture monitor --follow). Every error as parse_csv's.
+class CsvLineReader {
+ public:
+  explicit CsvLineReader(std::string source);
+  // True when the line was a data row: its values are then in row().
+  bool add_line(std::string_view line);
+  const std::vector<double>& row() const { return row_; }
+  bool has_header() const { return have_header_; }
+  // The source, comments and header (no rows); throws InputError when no header came yet.
+  const CsvTable& header() const;
+  std::size_t line_number() const { return line_number_; }
+
+ private:
+  void set_header(std::string_view line, std::size_t number);
+  bool all_numbers(std::string_view line);
+  CsvTable table_;
+  std::vector<std::string_view> fields_;
+  std::vector<double> row_;
+  std::size_t line_number_ = 0, last_comment_line_ = 0;
+  bool have_header_ = false, comma_separated_ = true;
+};
+
 CsvTable parse_csv(std::string_view text, const std::string& source);
 CsvTable read_csv(const std::filesystem::path& path);
 

@@ -269,7 +269,7 @@ void write_checkpoint(const fs::path& path, const Checkpoint& checkpoint) {
 }
 
 Checkpoint read_checkpoint(const fs::path& path) {
-  return parse_checkpoint(io::read_text_file(path), path.string());
+  return parse_checkpoint(io::read_file(path), path.string());
 }
 
 fs::path checkpoint_path(const fs::path& folder, std::uint64_t step) {

@@ -114,7 +114,8 @@ Key choice_key(std::string section, std::string name, std::string help, std::str
       }
       list += (list.empty() ? "" : ", ") + fmt::format("\"{}\"", choice);
     }
-    throw InputError(where, fmt::format("\"{}\" is not a valid choice", value), "use one of " + list);
+    throw InputError(where, fmt::format("\"{}\" is not a valid choice", excerpt(value)),
+                     "use one of " + list);
   };
   return key;
 }
@@ -326,6 +327,13 @@ void validate(const RunConfig& c, const Origin& origin) {
   if (c.sample_lattice == "chain" || c.sample_lattice == "block")
     check(c.lattice_cells[1] >= 2, origin.at("sample.lattice_cells"), "needs at least 2 particles along y",
           "write e.g. [1, 10, 1]");
+  const auto& n = c.lattice_cells;
+  const double particles =
+      c.sample_lattice == "chain" ? double(n[1]) : double(n[0]) * double(n[1]) * double(n[2]);
+  check(particles <= max_particles, origin.at("sample.lattice_cells"),
+        fmt::format("{:g} particles would need about {:.3g} GB to run", particles,
+                    particles * run_bytes_per_particle / 1e9),
+        fmt::format("use at most {:g} particles", max_particles));
 }
 
 RunConfig from_table(const toml::table& table, const Origin& origin) {
@@ -424,7 +432,7 @@ RunConfig parse_config(const std::string& toml_text, const std::string& source,
 }
 
 RunConfig load_config(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  RunConfig config = parse_config(io::read_text_file(file), file.string(), overrides);
+  RunConfig config = parse_config(io::read_text_file(file, io::max_config_bytes), file.string(), overrides);
   config.config_file = file;
   return config;
 }

@@ -114,7 +114,7 @@ std::string figures_section(const std::vector<figures::Drawn>& drawn, std::size_
         "<figure><img alt=\"{0}\" src=\"data:image/png;base64,{1}\">\n<figcaption><strong>{0}</strong>: {2} "
         "(data and gnuplot script: <code>figures/{0}.dat</code>, "
         "<code>figures/{0}.gp</code>)</figcaption></figure>\n",
-        io::escape_markup(figure.name), base64(io::read_text_file(png)), io::escape_markup(figure.caption));
+        io::escape_markup(figure.name), base64(io::read_file(png)), io::escape_markup(figure.caption));
     ++count;
   }
   return html;

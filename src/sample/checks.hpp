@@ -20,6 +20,12 @@ inline constexpr double min_plausible_radius = 1e-6, max_plausible_radius = 1e3,
 // duplicate or a broken export: bonded packings overlap by a few percent at most.
 inline constexpr double max_overlap_fraction = 0.5;
 
+// The most particles a sample may have: a run keeps about 500 bytes per particle (docs/
+// performance.md), so 5e7 particles need some 25 GB. Generators refuse larger requests with the
+// estimate instead of failing to allocate.
+inline constexpr double max_particles = 5e7;
+inline constexpr double run_bytes_per_particle = 500.0;
+
 // Throws InputError naming `source`, the particle ids or bond, and the fix.
 void check_sample(const Sample& sample, const std::string& source);
 

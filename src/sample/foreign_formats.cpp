@@ -43,7 +43,7 @@ AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>
   if (style[0] == "bpm/sphere") return {0, 2, 5, 3, 4, 1, 8};
   if (style[0] == "sphere") return {0, 1, 4, 2, 3, -1, 7};
   if (style[0] != "hybrid")
-    in.fail(fmt::format("atom style '{}' has no particle radius", style[0]), supported);
+    in.fail(fmt::format("atom style '{}' has no particle radius", excerpt(style[0])), supported);
   int column = 5;  // id type x y z, then each sub-style's own columns in order
   for (std::size_t k = 1; k < style.size(); ++k) {
     const auto sub = style[k];
@@ -60,7 +60,7 @@ AtomLayout atom_layout(const TextReader& in, const std::vector<std::string_view>
       layout.molecule = column;
       column += 2;  // molecule-ID q
     } else {
-      in.fail(fmt::format("hybrid sub-style '{}' is not supported", sub), supported);
+      in.fail(fmt::format("hybrid sub-style '{}' is not supported", excerpt(sub)), supported);
     }
   }
   if (layout.diameter < 0) in.fail("the hybrid atom style has no 'sphere' part, so no radius", supported);
@@ -167,7 +167,7 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
     } else if (words.size() == 4 && words[2].size() == 3 && words[2].substr(1) == "lo" &&
                words[3].substr(1) == "hi") {
       const int axis = words[2][0] - 'x';
-      if (axis < 0 || axis > 2) in.fail(fmt::format("unknown bounds keyword '{}'", words[2]));
+      if (axis < 0 || axis > 2) in.fail(fmt::format("unknown bounds keyword '{}'", excerpt(words[2])));
       const double lo = in.real(words[0], "lower bound"), hi = in.real(words[1], "upper bound");
       if (!(hi > lo)) in.fail(fmt::format("{} bounds {} {} are empty", words[2], lo, hi));
       (axis == 0 ? box.lower.x : axis == 1 ? box.lower.y : box.lower.z) = lo;
@@ -296,7 +296,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   TextReader in(text, source, 0, "see the LSMGeometry 1.2 layout in docs/sample.md");
   const auto keyword = [&](std::string_view what) {
     const auto line = in.require(fmt::format("'{}'", what));
-    if (line != what) in.fail(fmt::format("expected '{}', found '{}'", what, line));
+    if (line != what) in.fail(fmt::format("expected '{}', found '{}'", what, excerpt(line)));
   };
   auto words = TextReader::split(in.require("'LSMGeometry 1.2'"));
   if (words.size() != 2 || words[0] != "LSMGeometry") in.fail("not an LSMGeometry file");
@@ -322,7 +322,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
       if (words.size() < 2 || words[1] != "3D")
         in.fail("only 3D geometries can be samples", "generate a 3D geometry");
     } else {
-      in.fail(fmt::format("unknown header line '{}'", line));
+      in.fail(fmt::format("unknown header line '{}'", excerpt(line)));
     }
   }
   keyword("Simple");
@@ -337,7 +337,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   }
   keyword("EndParticles");
   if (in.next(line)) {
-    if (line != "BeginConnect") in.fail(fmt::format("expected 'BeginConnect', found '{}'", line));
+    if (line != "BeginConnect") in.fail(fmt::format("expected 'BeginConnect', found '{}'", excerpt(line)));
     const auto bonds = in.count(in.require("the connection count"), "connection count");
     for (std::size_t k = 0; k < bonds; ++k) {
       words = TextReader::split(in.require(fmt::format("connection {} of {}", k + 1, bonds)));

@@ -125,7 +125,7 @@ Sample parse_own(std::string_view text, const std::string& source) {
     if (words.size() > 6) in.fail("more than 6 columns (id x y z radius group)");
     const auto group = std::find(group_names.begin(), group_names.end(), words[5]);
     if (group == group_names.end())
-      in.fail(fmt::format("unknown group '{}'", words[5]), "use free, bottom or top");
+      in.fail(fmt::format("unknown group '{}'", excerpt(words[5])), "use free, bottom or top");
     build.add_particle(in, in.integer(words[0], "id"),
                        {in.real(words[1], "x"), in.real(words[2], "y"), in.real(words[3], "z")},
                        in.radius(words[4]), static_cast<ParticleGroup>(group - group_names.begin()));

@@ -1,7 +1,5 @@
 #include "sample/generator.hpp"
 
-#include "core/morton.hpp"
-
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -10,14 +8,17 @@
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <optional>
 
 #include "core/error.hpp"
+#include "core/morton.hpp"
 #include "core/progress.hpp"
 #include "core/units.hpp"
 #include "rupture/version.hpp"
 #include "sample/cell_grid.hpp"
+#include "sample/checks.hpp"
 
 namespace rupture {
 
@@ -83,8 +84,22 @@ void validate(const PackingParams& p) {
   if (!(p.bond_tolerance >= 0.0) || !std::isfinite(p.bond_tolerance))
     throw InputError("--bond-tolerance", fmt::format("must be >= 0 (got {})", p.bond_tolerance),
                      "give the largest bonded surface gap relative to the pair's mean radius, e.g. 0.1");
-  if (!positive(p.density))
-    throw InputError("--density", fmt::format("must be positive (got {} g/mm^3)", p.density));
+  if (!(p.density >= min_plausible_density && p.density <= max_plausible_density))
+    throw InputError("--density",
+                     fmt::format("{:g} g/mm^3 is outside the plausible [{:g}, {:g}] g/mm^3", p.density,
+                                 min_plausible_density, max_plausible_density),
+                     "give the density in g/mm^3 (water is 1e-3)");
+  // A dense random packing fills about 60 % of the box: the count, roughly, at the median radius.
+  const double volume = p.size.x * p.size.y * p.size.z;
+  const double particles = 0.6 * volume / (4.0 / 3.0 * std::numbers::pi * std::pow(p.r_median, 3));
+  if (particles > max_particles)
+    throw InputError(
+        "--width/--height/--depth",
+        fmt::format("a {:g} mm^3 box of particles of median radius {:g} mm holds about {:.3g} particles (a "
+                    "run of them "
+                    "needs about {:.3g} GB); at most {:g} are generated",
+                    volume, p.r_median, particles, particles * run_bytes_per_particle / 1e9, max_particles),
+        "use a smaller box or larger radii");
   if (p.attempts_per_draw == 0 || p.draw_block == 0 || p.fill_block == 0)
     throw InputError("packing budget", "attempt and block sizes must be at least 1");
   if (!(p.min_drawn_rate >= 0.0 && p.min_drawn_rate <= 1.0))

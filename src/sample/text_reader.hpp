@@ -86,7 +86,7 @@ class TextReader {
     double value = 0.0;
     const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
-      fail(fmt::format("{} '{}' is not a finite number", what, word),
+      fail(fmt::format("{} '{}' is not a finite number", what, excerpt(word)),
            "write a decimal number such as 0.25 or 1e-3");
     return value;
   }
@@ -95,7 +95,7 @@ class TextReader {
     std::int64_t value = 0;
     const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || end != word.data() + word.size())
-      fail(fmt::format("{} '{}' is not an integer", what, word), "write a whole number such as 12");
+      fail(fmt::format("{} '{}' is not an integer", what, excerpt(word)), "write a whole number such as 12");
     return value;
   }
   std::size_t count(std::string_view word, std::string_view what) const {

@@ -122,7 +122,7 @@ LogRange read_range(const Section& grid, const std::string& key) {
 
 ScanConfig load_scan_config(const std::filesystem::path& file) {
   const std::string source = file.string();
-  const std::string file_text = io::read_text_file(file);
+  const std::string file_text = io::read_text_file(file, io::max_config_bytes);
   io::require_text(file_text, source);
   toml::table root;
   try {

@@ -1,12 +1,12 @@
 // `rupture analyze` and `rupture monitor` end to end: exit codes (0 accepted, 4 rejected, 2 bad
 // input), analysis.json with units, and messages that name the file, line and column.
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <thread>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "fbm/power_law.hpp"
 #include "support/tool.hpp"
@@ -24,7 +24,8 @@ void write_curve(const std::filesystem::path& file, const Curve& c, const std::s
   std::ofstream out(file);
   out << "# synthetic curve\n" << header << "\n";
   out.precision(17);
-  for (std::size_t i = 0; i < c.strain.size(); ++i) out << c.strain[i] << "," << c.force[i] << "," << c.energy[i] << "\n";
+  for (std::size_t i = 0; i < c.strain.size(); ++i)
+    out << c.strain[i] << "," << c.force[i] << "," << c.energy[i] << "\n";
 }
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
@@ -44,7 +45,8 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   EXPECT_NEAR(j["delta_x"]["value"].get<double>(), 1.0 / 6.0, 0.005);
   EXPECT_GT(j["delta_x"]["error"].get<double>(), 0.0);
   EXPECT_EQ(j["delta_x"]["method"], "fitted-maxima");
-  EXPECT_EQ(j["delta_x"]["sampling_distribution"]["delta"].size(), j["delta_x"]["sampling_distribution"]["density"].size());
+  EXPECT_EQ(j["delta_x"]["sampling_distribution"]["delta"].size(),
+            j["delta_x"]["sampling_distribution"]["density"].size());
   EXPECT_EQ(j["uncertainty"]["replicates"], 200);
   EXPECT_EQ(j["filter"]["kind"], "butterworth");
   EXPECT_TRUE(j.contains("version"));
@@ -74,8 +76,9 @@ TEST(AnalyzeCli, OtherTablesByNamingColumnsWithScales) {
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("no column 'strain'"), std::string::npos) << missing.err;
   EXPECT_NE(missing.err.find("--strain"), std::string::npos) << missing.err;
-  const auto r = run_rupture("analyze " + quoted(dir / "lab.csv") +
-                             " --strain elongation --force load --energy work --strain-scale 4 --strain-unit %");
+  const auto r =
+      run_rupture("analyze " + quoted(dir / "lab.csv") +
+                  " --strain elongation --force load --energy work --strain-scale 4 --strain-unit %");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
   EXPECT_EQ(j["x_c"]["unit"], "%");
@@ -150,6 +153,67 @@ TEST(MonitorCli, FollowsAGrowingFile) {
   EXPECT_NE(r.out.find("WARNING at strain"), std::string::npos) << r.out;
 }
 
+// A followed file that is cut back and rewritten, or replaced by another file of its name (an
+// editor's save, a rerun into the same folder), restarts the curve instead of mixing two.
+TEST(MonitorCli, FollowStartsOverWhenTheFileIsTruncatedOrReplaced) {
+  const auto c = testing::power_law_curve(2.0, 1201);
+  const auto rows = [&](std::ostream& out, std::size_t from, std::size_t to) {
+    out.precision(17);
+    for (std::size_t i = from; i < to; ++i)
+      out << c.strain[i] << "," << c.force[i] << "," << c.energy[i] << "\n";
+  };
+  for (const bool replace : {false, true}) {
+    SCOPED_TRACE(replace ? "replaced" : "truncated");
+    TempDir dir;
+    const auto file = dir / "curves.csv";
+    {
+      std::ofstream out(file);
+      out << "strain[1],force[1],elastic_energy[1]\n";
+      rows(out, 0, 500);  // the first attempt's rows
+    }
+    std::thread writer([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      if (replace) {
+        std::ofstream out(dir / "new.csv");
+        out << "strain[1],force[1],elastic_energy[1]\n";
+        out.close();
+        std::filesystem::rename(dir / "new.csv", file);
+      } else {
+        std::ofstream(file, std::ios::trunc) << "strain[1],force[1],elastic_energy[1]\n";
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      std::ofstream out(file, std::ios::app);
+      rows(out, 0, c.strain.size());
+    });
+    const auto r = run_rupture("monitor " + quoted(file) + " --follow --idle-timeout 1.5 --poll 10");
+    writer.join();
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(replace ? "the file was replaced; reading it again from the start"
+                                 : "the file was truncated; reading it again from the start"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1201 samples read"), std::string::npos) << r.out;
+  }
+}
+
+// The monitor reads with the same reader as analyze: a LAMMPS `fix print` file, space separated,
+// its header the last '#' line.
+TEST(MonitorCli, ReadsWhitespaceSeparatedFilesWithTheHeaderInAComment) {
+  TempDir dir;
+  const auto c = testing::power_law_curve(2.0, 1201);
+  {
+    std::ofstream out(dir / "print.txt");
+    out.precision(17);
+    out << "# Fix print output for fix 2\n# strain force elastic_energy\n";
+    for (std::size_t i = 0; i < c.strain.size(); ++i)
+      out << c.strain[i] << " " << c.force[i] << " " << c.energy[i] << "\n";
+  }
+  const auto r = run_rupture("monitor " + quoted(dir / "print.txt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1201 samples read"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x_c prediction held"), std::string::npos) << r.out;
+}
+
 TEST(MonitorCli, TextInANumberFieldNamesLineAndColumn) {
   TempDir dir;
   std::ofstream(dir / "bad.csv") << "# comment\nstrain[1],force[1],elastic_energy[1]\n0,0,0\n0.1,0.1,x\n";
@@ -172,13 +236,15 @@ TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
   for (double alpha : {0.0, 2.0}) {
     const auto expected = fbm::power_law::maxima(alpha);
     const auto curve = dir / ("bundle_" + std::to_string(static_cast<int>(alpha)) + ".csv");
-    const auto sim = run_rupture("fbm simulate --dist " + std::string(alpha == 0.0 ? "uniform" : "powerlaw:alpha=2") +
-                                 " --fibers 100000 --seed 7 --out " + quoted(curve));
+    const auto sim =
+        run_rupture("fbm simulate --dist " + std::string(alpha == 0.0 ? "uniform" : "powerlaw:alpha=2") +
+                    " --fibers 100000 --seed 7 --out " + quoted(curve));
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
     // A finite bundle's noise is a random walk (fibers break one by one): nearly invisible in E_e
     // but white in ℰ, which the automatic cutoff (set from F and E_e) does not see; name the cutoff
     // (docs/analysis.md, "Known limits").
-    const auto r = run_rupture("analyze " + quoted(curve) + " --cutoff 0.03 -o " + quoted(dir / "analysis.json"));
+    const auto r =
+        run_rupture("analyze " + quoted(curve) + " --cutoff 0.03 -o " + quoted(dir / "analysis.json"));
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
     EXPECT_NEAR(j["x_c"]["value"].get<double>(), expected.x_c, 0.005) << alpha;
@@ -213,7 +279,10 @@ TEST(AnalyzeCli, LammpsAveTimeFileIsReadAndUnitlessColumnsAreWarnedAbout) {
                              " --strain v_strain --force v_force --energy v_eel --strain-unit 1");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_EQ(r.err.find("'v_strain' names no unit"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("warning: " + (dir / "strain_force.ave").string() + ": column 'v_force' names no unit"), std::string::npos) << r.err;
+  EXPECT_NE(
+      r.err.find("warning: " + (dir / "strain_force.ave").string() + ": column 'v_force' names no unit"),
+      std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("give --force-unit"), std::string::npos) << r.err;
   const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
   EXPECT_EQ(j["warnings"].size(), 2u);

@@ -32,7 +32,7 @@ struct BadInput {
   const char* file;      // the bad file, written into a fresh folder
   std::string content;   // its bytes
   const char* args;      // `rupture` arguments; {in} is the file, {dir} the folder
-  const char* expected;  // the message after "rupture: error: ", paths relative to the folder
+  std::string expected;  // the message after "rupture: error: ", paths relative to the folder
                          // (the whole message, or its start where the rest is a long list)
 };
 
@@ -127,6 +127,17 @@ std::vector<BadInput> bad_inputs() {
       {"config_nul_byte", "bad.toml",
        block_config + std::string("[bonds]\nstiffness = 1e3\0\nbreak_distance = 1\n", 44), run,
        "bad.toml:6: holds a NUL byte (byte 98): this is not a text file, or it is damaged"},
+      // Sizes checked before anything is allocated: endless devices, binary files, huge requests.
+      {"config_endless_device", "unused.toml", block_config, "run /dev/zero -o {dir}/out",
+       "/dev/zero:1: holds a NUL byte (byte 1): this is not a text file, or it is damaged"},
+      {"config_billion_particle_lattice", "bad.toml",
+       replaced(block_config, "[2, 3, 1]", "[1000, 1000, 1000]"), run,
+       "bad.toml: sample.lattice_cells: 1e+09 particles would need about 500 GB to run; use at most 5e+07 "
+       "particles"},
+      {"generate_huge_box", "unused.txt", "",
+       "sample generate --seed 1 --width 1e4 --height 1e4 --depth 1e4 --out {dir}/s.sample",
+       "--width/--height/--depth: a 1e+12 mm^3 box of particles of median radius 0.5 mm holds about 1.15e+12 "
+       "particles (a run of them needs about 5.73e+05 GB); at most 5e+07 are generated"},
       {"run_into_root", "good.toml", block_config, "run {in} -o /",
        "/: is the root folder; a run writes a dozen files into its folder; give a folder of its own, e.g. -o "
        "run"},
@@ -146,8 +157,7 @@ std::vector<BadInput> bad_inputs() {
        convert_own,
        "bad.sample:5: y 'abc' is not a finite number; write a decimal number such as 0.25 or 1e-3"},
       {"own_sample_nul_byte", "bad.sample", replaced(own_sample, "2 2 1", std::string("2 2 1\0", 6)),
-       convert_own,
-       "bad.sample:2: box zhi '1\\x00' is not a finite number; write a decimal number such as 0.25 or 1e-3"},
+       convert_own, "bad.sample:2: holds a NUL byte (byte 33): this is not a text file, or it is damaged"},
       {"own_sample_negative_radius", "bad.sample", replaced(own_sample, "1.5 0.5 0.5", "1.5 0.5 -0.5"),
        convert_own, "bad.sample:6: radius -0.5 mm is not positive; every particle needs a radius > 0"},
       {"own_sample_unknown_group", "bad.sample", replaced(own_sample, "top", "middle"), convert_own,
@@ -213,6 +223,13 @@ std::vector<BadInput> bad_inputs() {
        "bad.csv: no column 'force'; name the column with --force (the header has: strain, energy)"},
       {"csv_not_a_number", "bad.csv", "strain,force,elastic_energy\n0,0,0\n1,abc,0.5\n", analyze,
        "bad.csv:3: column 2 ('force'): 'abc' is not a number; use plain decimal numbers such as 1.5e-3"},
+      {"csv_nul_bytes", "bad.csv", std::string(100000, '\0'), analyze,
+       "bad.csv:1: holds a NUL byte (byte 1): this is not a text file, or it is damaged"},
+      // A 1 MB token is quoted by its first 77 bytes.
+      {"csv_huge_token", "bad.csv",
+       "strain,force,elastic_energy\n0,0,0\n" + std::string(1000000, 'x') + ",1,1\n", analyze,
+       "bad.csv:3: column 1 ('strain'): '" + std::string(77, 'x') +
+           "...' is not a number; use plain decimal"},
       {"csv_ragged_row", "bad.csv", "strain,force,elastic_energy\n0,0,0\n1,1\n", analyze,
        "bad.csv:3: 2 fields where the header has 3; every row needs one value per header column"},
       // --- thresholds files (fbm --dist file:PATH) ---
@@ -229,7 +246,8 @@ std::vector<BadInput> bad_inputs() {
       {"scan_unknown_key", "bad.toml", "[scan]\nbase = \"base.toml\"\nbogus = 1\n" + scan_grid, scan,
        "bad.toml: scan.bogus: unknown key; valid keys: scan.base, scan.output, scan.set"},
       {"scan_negative_range", "bad.toml", replaced(scan_config, "from = 1e3", "from = -1e3"), scan,
-       "bad.toml: grid.k_n: from = -1000, to = 10000, count = 2; give from > 0, to > 0 and a count of 1 or "
+       "bad.toml: grid.k_n: from = -1000, to = 10000, count = 2; give finite from > 0, to > 0 and a count of "
+       "1 or "
        "more"},
       {"scan_unknown_ramp_rule", "bad.toml", scan_config + "[rules]\nramp = \"sideways\"\n", scan,
        "bad.toml: rules.ramp: 'sideways' is not a ramp rule; use \"scaled\" or \"base\""},
