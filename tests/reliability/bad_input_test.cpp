@@ -184,6 +184,14 @@ std::vector<BadInput> bad_inputs() {
        run_sample,
        "bad.sample: density 2.5e-10 g/mm^3 is outside the plausible [1e-07, 0.05] g/mm^3 (a value in t/mm^3? "
        "multiply by 1e6)"},
+      {"lammps_density_in_tonnes", "bad.data",
+       lammps_header +
+           replaced(replaced(lammps_atoms, "0.5 1 0.00025 1", "0.5 1 2.5e-10 1"), "0.5 1 0.00025 1",
+                    "0.5 1 2.5e-10 1") +
+           lammps_bonds,
+       run_sample,
+       "bad.data: density 2.5e-10 g/mm^3 is outside the plausible [1e-07, 0.05] g/mm^3 (a value in t/mm^3? "
+       "multiply by 1e6)"},
       // --- LAMMPS data files ---
       {"lammps_atom_style_without_radius", "bad.data",
        lammps_header + replaced(lammps_atoms, "hybrid sphere bond", "full") + lammps_bonds, convert_foreign,
@@ -251,6 +259,9 @@ std::vector<BadInput> bad_inputs() {
        "more"},
       {"scan_unknown_ramp_rule", "bad.toml", scan_config + "[rules]\nramp = \"sideways\"\n", scan,
        "bad.toml: rules.ramp: 'sideways' is not a ramp rule; use \"scaled\" or \"base\""},
+      // A NUL byte used to end the scan config silently: the points after it were lost.
+      {"scan_nul_byte", "bad.toml", std::string("[scan]\nbase = \"base.toml\"\n\0", 27) + scan_grid, scan,
+       "bad.toml:3: holds a NUL byte (byte 27): this is not a text file, or it is damaged"},
       {"scan_no_points", "bad.toml", "[scan]\nbase = \"base.toml\"\n", scan,
        "bad.toml: no points; add a [grid] with k_n and b_d ranges, or [[points]] entries"},
       // Found by the scan-config fuzzer: a dotted key in [sample] made a table the message did not name.
