@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -60,12 +61,15 @@ struct Child {
 // Starts `rupture ARGS` in `cwd` (CI=1: no progress line). A `file_limit` (bytes) caps the size of
 // every file it writes (RLIMIT_FSIZE, `ulimit -f`); SIGXFSZ keeps its default action (killing the
 // process), so only rupture's own handling turns a write past the limit into a failed write.
-Child start(const fs::path& cwd, const std::vector<std::string>& args, rlim_t file_limit = RLIM_INFINITY) {
+// A `wrapper` command line (strace) runs rupture under it.
+Child start(const fs::path& cwd, const std::vector<std::string>& args, rlim_t file_limit = RLIM_INFINITY,
+            const std::vector<std::string>& wrapper = {}) {
   static int count = 0;
   Child child{-1, cwd / fmt::format("rupture_{}.out", count), cwd / fmt::format("rupture_{}.err", count)};
   ++count;
   // Everything the child needs is prepared before fork: it only calls async-signal-safe functions.
-  std::vector<std::string> words = {RUPTURE_BINARY};
+  std::vector<std::string> words = wrapper;
+  words.push_back(RUPTURE_BINARY);
   words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& w : words) argv.push_back(w.data());
@@ -427,6 +431,82 @@ TEST(RunFolder, EveryPhaseOfTheFinishSequenceLeavesAUsableFolder) {
   const Ended over = run_to_end(killed.parent_path(), run_args({"--overwrite"}));
   EXPECT_EQ(over.exit_code, 2);
   EXPECT_THAT(over.err, HasSubstr("holds the checkpoints of an unfinished run"));
+}
+
+// The finish sequence killed for real: strace lists the run's renames and removals once, then
+// kills (SIGKILL, injected at the syscall's entry) a second, identical run exactly at the rename
+// that would have made run.json "finished", at the first removal of a checkpoint after it, and at
+// the removal of the emptied checkpoints folder. Each folder is then usable: the first resumes to
+// the uninterrupted run's files, the others say the run ended and take --overwrite.
+TEST(RunFolder, KillsInjectedAtEachStepOfTheFinishSequence) {
+  TempDir dir;
+  const fs::path reference = reference_run(dir);
+  const std::string calls = "rename,renameat,renameat2,unlink,unlinkat,rmdir";
+  // LeakSanitizer stops the world with ptrace, which a traced process cannot (sanitizer build).
+  const std::string no_leak_check = "ASAN_OPTIONS=detect_leaks=0";
+  const fs::path traced = dir / "traced";
+  fs::create_directories(traced);
+  const Ended listed =
+      wait_for_end(start(traced, run_args(), RLIM_INFINITY,
+                         {RUPTURE_STRACE, "-E", no_leak_check, "-o", "trace.txt", "-e", "trace=" + calls}));
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  // Each call as (name, its count among calls of that name so far): strace's when=N counts so.
+  struct Call {
+    std::string name, line;
+    int nth;
+  };
+  std::vector<Call> sequence;
+  std::map<std::string, int> seen;
+  {
+    std::istringstream trace(slurp(traced / "trace.txt"));
+    for (std::string line; std::getline(trace, line);) {
+      const auto paren = line.find('(');
+      if (paren == std::string::npos || line.find("resumed>") != std::string::npos) continue;
+      const std::string name = line.substr(0, paren);
+      sequence.push_back({name, line, ++seen[name]});
+    }
+  }
+  std::size_t finished_at = sequence.size();
+  for (std::size_t i = 0; i < sequence.size(); ++i)
+    if (sequence[i].name.starts_with("rename") &&
+        sequence[i].line.find("run/run.json\"") != std::string::npos)
+      finished_at = i;  // the last rename of run.json: the "finished" one
+  ASSERT_LT(finished_at + 2, sequence.size()) << "no checkpoint removal after the final run.json";
+  const Call& checkpoint_removal = sequence[finished_at + 1];
+  const Call& folder_removal = sequence.back();
+  ASSERT_THAT(checkpoint_removal.line, HasSubstr(".ckpt\"")) << "remove_all unlinks each checkpoint";
+  ASSERT_THAT(folder_removal.line, HasSubstr("run/checkpoints\""));
+
+  const auto kill_at = [&](const Call& call, const std::string& name) {
+    const fs::path cwd = dir / name;
+    fs::create_directories(cwd);
+    const Ended killed = wait_for_end(
+        start(cwd, run_args(), RLIM_INFINITY,
+              {RUPTURE_STRACE, "-E", no_leak_check, "-o", "/dev/null", "-e", "trace=" + call.name, "-e",
+               fmt::format("inject={}:signal=KILL:when={}", call.name, call.nth)}));
+    EXPECT_NE(killed.exit_code, 0) << name << ": the run was not killed";
+    return cwd;
+  };
+  {
+    const fs::path cwd = kill_at(sequence[finished_at], "before-finished");
+    EXPECT_EQ(nlohmann::json::parse(slurp(cwd / "run" / "run.json"))["status"], "running");
+    const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    expect_same_outputs(cwd / "run", reference);
+  }
+  for (const auto& [call, name] : {std::pair{checkpoint_removal, "removing-checkpoints"},
+                                   std::pair{folder_removal, "removing-the-folder"}}) {
+    SCOPED_TRACE(name);
+    const fs::path cwd = kill_at(call, name);
+    EXPECT_EQ(nlohmann::json::parse(slurp(cwd / "run" / "run.json"))["status"], "finished");
+    EXPECT_TRUE(fs::exists(cwd / "run" / "checkpoints"));
+    const Ended resumed = run_to_end(cwd, {"run", "--resume", "run"});
+    EXPECT_EQ(resumed.exit_code, 2);
+    EXPECT_THAT(resumed.err, HasSubstr("the run already ended (finished, separated)"));
+    const Ended replaced = run_to_end(cwd, run_args({"--overwrite"}));
+    EXPECT_EQ(replaced.exit_code, 0) << replaced.err;
+    EXPECT_FALSE(fs::exists(cwd / "run" / "checkpoints"));
+  }
 }
 
 TEST(RunFolder, ARefusedResumeChangesNothing) {
