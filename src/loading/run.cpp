@@ -270,8 +270,8 @@ std::unique_ptr<io::FolderLock> claim_new_folder(const std::filesystem::path& fo
                "give an empty or new folder with -o/--output or output.folder");
   } else if (!has_ended(record) && !list_checkpoints(folder).empty()) {
     refuse("holds the checkpoints of an unfinished run",
-           fmt::format("continue it with `rupture run --resume {}`, or start over with --overwrite",
-                       folder.string()));
+           fmt::format("continue it with `rupture run --resume {}`, or remove {} to start over",
+                       folder.string(), (folder / "checkpoints").string()));
   } else if (existing == Existing::refuse) {
     const std::string status = record.value("status", "");
     refuse(has_ended(record) || status == "failed"
@@ -311,7 +311,9 @@ void replay(analysis::Monitor& monitor, const std::filesystem::path& curves_file
     throw InputError(
         curves_file.string(),
         fmt::format("holds {} rows where its checkpoint recorded {}", curves.rows(), loop.curves_rows),
-        "the run folder was changed after the checkpoint; start over with --overwrite");
+        "the run folder was changed after the checkpoint; restore it, or remove its checkpoints and start "
+        "over "
+        "with --overwrite");
   const auto& strain = curves.column("strain");
   const auto& force = curves.column("force_top");
   const auto& energy = curves.column("elastic_energy");
@@ -355,9 +357,10 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     for (const auto& [file, prefix] :
          {std::pair{curves_file, curves_prefix}, std::pair{breaks_file, breaks_prefix}})
       if (const auto mismatch = io::prefix_mismatch(file, prefix, c.format >= 2))
-        throw InputError(file.string(), *mismatch,
-                         "the run folder was changed after the checkpoint; restore it, or start over with "
-                         "--overwrite");
+        throw InputError(
+            file.string(), *mismatch,
+            "the run folder was changed after the checkpoint; restore it, or remove its checkpoints "
+            "and start over with --overwrite");
     if (config.monitor) replay(monitor, curves_file, loop);
     curves = std::make_unique<io::CsvStream>(curves_file, curves_prefix);
     breaks = std::make_unique<io::CsvStream>(breaks_file, breaks_prefix);
