@@ -21,11 +21,11 @@ std::string one_line(const std::string& text) {
   return out;
 }
 
-// A safety net behind excerpt(): no part of a message runs past a few lines' worth, whatever a
-// caller quoted (the fix, which may list every valid key, is left whole).
+// A safety net behind excerpt(): the problem never runs past a few lines' worth, whatever a
+// caller quoted. The place stays whole (a message must start with the place it names, and a path
+// is the user's own), and so does the fix, which may list every valid key.
 std::string compose(const std::string& where, const std::string& problem, const std::string& fix) {
-  std::string message =
-      where.empty() ? excerpt(problem, 1000) : excerpt(where, 400) + ": " + excerpt(problem, 1000);
+  std::string message = where.empty() ? excerpt(problem, 1000) : where + ": " + excerpt(problem, 1000);
   if (!fix.empty()) message += "; " + fix;
   return one_line(message);
 }

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/error.hpp"
 #include "sample/formats.hpp"
 
 namespace rupture {
@@ -20,6 +21,17 @@ TEST(FuzzRegression, OwnSampleCommentThatReadsAsTheUnitsLineRoundTrips) {
   EXPECT_EQ(once.provenance, std::vector<std::string>{"made by hand"});
   const std::string written = format_own(once);
   EXPECT_EQ(format_own(parse_own(written, "t.sample")), written);
+}
+
+// thresholds_fuzzer: a 2 kB file name in `--dist file:NAME` was cut to 400 bytes by the message's
+// length net, so the message no longer began with the place it names. The place stays whole now;
+// only the problem is capped (a quoted token is an excerpt of 80 bytes before that).
+TEST(FuzzRegression, ALongPlaceIsKeptWholeAndOnlyTheProblemIsCapped) {
+  const std::string place(2000, 'p'), problem(5000, 'q');
+  const std::string message = InputError(place, problem, "fix").what();
+  EXPECT_EQ(message.substr(0, place.size() + 2), place + ": ");
+  EXPECT_EQ(message.size(), place.size() + 2 + 1000 + 5) << "1000 bytes of problem, then \"; fix\"";
+  EXPECT_EQ(excerpt(problem), std::string(77, 'q') + "...");
 }
 
 }  // namespace
