@@ -15,9 +15,6 @@ namespace rupture::io {
 
 namespace fs = std::filesystem;
 
-const char* const nul_fix =
-    "give the text file (TOML, CSV) itself; a copy interrupted mid-way can end in NULs";
-
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
   temporary_ = target_;
   temporary_ += fmt::format(".tmp-{}", static_cast<long>(getpid()));
@@ -94,16 +91,7 @@ std::string read_whole(const fs::path& path, std::uint64_t max_bytes, bool text)
     const std::size_t got = std::fread(chunk, 1, sizeof chunk, file.get());
     if (got == 0) break;
     if (content.size() + got > max_bytes) throw too_large();
-    if (text && std::memchr(chunk, '\0', got) != nullptr) {
-      const std::string_view part(chunk, got);
-      const auto nul = part.find('\0');
-      const auto line =
-          lines_before + 1 + std::size_t(std::count(part.begin(), part.begin() + std::ptrdiff_t(nul), '\n'));
-      throw InputError(fmt::format("{}:{}", path.string(), line),
-                       fmt::format("holds a NUL byte (byte {}): this is not a text file, or it is damaged",
-                                   content.size() + nul + 1),
-                       nul_fix);
-    }
+    if (text) require_text(std::string_view(chunk, got), path.string(), lines_before + 1, content.size());
     if (text) lines_before += std::size_t(std::count(chunk, chunk + got, '\n'));
     content.append(chunk, got);
   }
@@ -121,14 +109,16 @@ std::string read_text_file(const fs::path& path, std::uint64_t max_bytes) {
   return read_whole(path, max_bytes, true);
 }
 
-void require_text(std::string_view text, const std::string& source) {
+void require_text(std::string_view text, const std::string& source, std::size_t first_line,
+                  std::uint64_t bytes_before) {
   const auto nul = text.find('\0');
   if (nul == std::string_view::npos) return;
-  const auto line = 1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n');
-  throw InputError(
-      fmt::format("{}:{}", source, line),
-      fmt::format("holds a NUL byte (byte {}): this is not a text file, or it is damaged", nul + 1),
-      "give the text file (TOML, CSV) itself; a copy interrupted mid-way can end in NULs");
+  const auto line =
+      first_line + std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(nul), '\n'));
+  throw InputError(fmt::format("{}:{}", source, line),
+                   fmt::format("holds a NUL byte (byte {}): this is not a text file, or it is damaged",
+                               bytes_before + nul + 1),
+                   "give the text file (TOML, CSV) itself; a copy interrupted mid-way can end in NULs");
 }
 
 }  // namespace rupture::io

@@ -56,6 +56,8 @@ std::string read_text_file(const std::filesystem::path& path, std::uint64_t max_
 
 // Throws InputError naming `source` and the line when `text` holds a NUL byte: a binary or damaged
 // file, which a parser would otherwise read only up to that byte (a TOML file's later keys lost).
-void require_text(std::string_view text, const std::string& source);
+// `text` may be a piece of a larger file that starts at line `first_line`, after `bytes_before` bytes.
+void require_text(std::string_view text, const std::string& source, std::size_t first_line = 1,
+                  std::uint64_t bytes_before = 0);
 
 }  // namespace rupture::io

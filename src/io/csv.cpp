@@ -109,8 +109,9 @@ bool CsvLineReader::all_numbers(std::string_view line) {
 }
 
 bool CsvLineReader::add_line(std::string_view text) {
-  require_text(text, table_.source);
   ++line_number_;
+  require_text(text, table_.source, line_number_, bytes_read_);
+  bytes_read_ += text.size() + 1;
   if (line_number_ == 1 && text.substr(0, 3) == "\xEF\xBB\xBF")
     text.remove_prefix(3);  // a UTF-8 byte order mark
   const std::string_view line = trim(text);
@@ -157,7 +158,6 @@ const CsvTable& CsvLineReader::header() const {
 }
 
 CsvTable parse_csv(std::string_view text, const std::string& source) {
-  require_text(text, source);
   CsvLineReader reader(source);
   CsvTable table;
   for (std::size_t pos = 0; pos < text.size();) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -56,6 +57,7 @@ class CsvLineReader {
   std::vector<std::string_view> fields_;
   std::vector<double> row_;
   std::size_t line_number_ = 0, last_comment_line_ = 0;
+  std::uint64_t bytes_read_ = 0;  // before the current line, for a NUL byte's position
   bool have_header_ = false, comma_separated_ = true;
 };
 

@@ -238,6 +238,9 @@ std::vector<BadInput> bad_inputs() {
        "strain,force,elastic_energy\n0,0,0\n" + std::string(1000000, 'x') + ",1,1\n", analyze,
        "bad.csv:3: column 1 ('strain'): '" + std::string(77, 'x') +
            "...' is not a number; use plain decimal"},
+      // The monitor reads line by line: the NUL is still placed by line and byte of the whole file.
+      {"monitor_nul_byte", "bad.csv", std::string("strain,force,elastic_energy\n0,0,0\n1,\0,1\n", 40),
+       "monitor {in}", "bad.csv:3: holds a NUL byte (byte 37): this is not a text file, or it is damaged"},
       {"csv_ragged_row", "bad.csv", "strain,force,elastic_energy\n0,0,0\n1,1\n", analyze,
        "bad.csv:3: 2 fields where the header has 3; every row needs one value per header column"},
       // --- thresholds files (fbm --dist file:PATH) ---
