@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "loading/run.hpp"
 #include "scan/farm.hpp"
+#include "scan/ledger.hpp"
 #include "scan/scan.hpp"
 
 namespace rupture::cli {
@@ -25,7 +26,7 @@ struct ScanOptions {
   std::string status_folder;
   int jobs = 0, threads = 0;
   long long task_index = -1;
-  bool collect = false, dry_run = false;
+  bool collect = false, dry_run = false, reanalyze = false;
 };
 
 std::string command_line(const ScanOptions& o) {
@@ -51,11 +52,11 @@ long long task_index(const ScanOptions& o) {
 }
 
 void print_plan(const scan::Plan& plan) {
-  fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13}\n", "point", "folder", "k_n[N/mm]", "b_d[mm]",
-             "ramp_steps", "max_strain[%]");
+  fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13} {:>15}\n", "point", "folder", "k_n[N/mm]", "b_d[mm]",
+             "ramp_steps", "max_strain[%]", "row_interval[1]");
   for (const auto& p : plan.points)
-    fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13}\n", p.index, p.name, p.k_n, p.b_d, p.ramp_steps,
-               p.max_strain);
+    fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13} {:>15}\n", p.index, p.name, p.k_n, p.b_d, p.ramp_steps,
+               p.max_strain, p.output_interval);
   fmt::print("{} points into {}; a job array needs --array=0-{}\n", plan.points.size(), plan.folder.string(),
              plan.points.size() - 1);
 }
@@ -68,6 +69,17 @@ void run(const ScanOptions& o) {
   if (o.target.empty())
     throw InputError("rupture scan", "no scan config given",
                      "run `rupture scan SCAN.toml` (see docs/scan.md)");
+  if (o.reanalyze) {
+    if (!std::filesystem::is_directory(o.target))
+      throw InputError(o.target, "--reanalyze needs a scan folder", "give the folder a scan wrote ([scan] output)");
+    const scan::Plan plan = scan::read_plan(o.target);
+    std::size_t done = 0;
+    for (const auto& point : plan.points) done += scan::reanalyze_point(plan, point);
+    scan::write_aggregate(plan, {{"command", command_line(o)}});
+    fmt::print("re-analysed {} of {} points; wrote {}\n", done, plan.points.size(),
+               (plan.folder / "results.csv").string());
+    return;
+  }
   if (o.collect && std::filesystem::is_directory(o.target)) {
     const scan::Plan plan = scan::read_plan(o.target);
     scan::write_aggregate(plan, {{"command", command_line(o) + " --collect"}});
@@ -119,6 +131,8 @@ void add_scan_command(CLI::App& app, int& /*exit_code*/) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--collect", o->collect,
                 "Write results.csv and scan.json from the finished points, run nothing");
+  cmd->add_flag("--reanalyze", o->reanalyze,
+                "Analyse every finished point of a scan folder again (the runs are kept), then rewrite results.csv");
   cmd->add_option("--status", o->status_folder,
                   "Show every point of the scan in this folder: done, failed, running, pending");
   cmd->add_flag("--dry-run", o->dry_run, "List the points with their ramp and stop strain, run nothing");

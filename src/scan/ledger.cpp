@@ -62,9 +62,24 @@ void add_analysis(nlohmann::json& row, const analysis::AnalysisResult& r) {
   put(row, "Gamma", r.Gamma);
   put(row, "A_r", r.A_r);
   if (r.alpha.alpha) row["alpha"] = *r.alpha.alpha;
-  if (r.mechanism) row["class"] = analysis::to_string(r.mechanism->mechanism);
+  if (r.mechanism && r.accepted) row["class"] = analysis::to_string(r.mechanism->mechanism);
   row["accepted"] = r.accepted ? 1 : 0;
   if (!r.accepted) row["why"] = r.rejection;
+}
+
+// Analyses the attempt's curve into analysis.json and the row. A separated run whose curve cannot
+// be analysed is an error; `why` gathers the reasons.
+void analyse_attempt(const std::filesystem::path& attempt, nlohmann::json& row, std::string& status, std::string& why) {
+  analysis::CurveFileInputs inputs;
+  inputs.curves = attempt / "curves.csv";
+  try {
+    auto analysed = analysis::analyze_curve_file(inputs, "rupture scan");
+    io::write_json_atomically(attempt / "analysis.json", analysed.document);
+    add_analysis(row, analysed.result);
+  } catch (const InputError& e) {
+    if (status == status::ok) status = status::error;
+    why = (why.empty() ? "" : why + "; ") + "analysis failed: " + e.what();
+  }
 }
 
 nlohmann::json base_row(const Point& point) {
@@ -168,16 +183,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
     if (!separated)
       why = fmt::format("not separated at the {} stop (strain {:.4g} %, {} steps)", summary.stop_reason,
                         summary.strain, summary.steps);
-    analysis::CurveFileInputs inputs;
-    inputs.curves = attempt / "curves.csv";
-    try {
-      auto analysed = analysis::analyze_curve_file(inputs, "rupture scan");
-      io::write_json_atomically(attempt / "analysis.json", analysed.document);
-      add_analysis(row, analysed.result);
-    } catch (const InputError& e) {
-      if (separated) status = status::error;
-      why = (why.empty() ? "" : why + "; ") + "analysis failed: " + e.what();
-    }
+    analyse_attempt(attempt, row, status, why);
   } catch (const RunError& e) {
     status = status::unstable;
     why = e.what();
@@ -216,6 +222,39 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
       {"row", row}};
   io::write_json_atomically(folder / "result.json", result);  // last: the point is now finished
   return result;
+}
+
+bool reanalyze_point(const Plan& plan, const Point& point) {
+  const auto folder = point_folder(plan, point);
+  const io::FileLock lock(folder / "lock");
+  if (!lock.held()) return false;  // a process is working on it
+  auto result = read_result(plan, point);
+  if (!result) return false;
+  const auto attempt = folder / result->at("attempt").get<std::string>();
+  std::string status = result->at("status").get<std::string>();
+  if ((status != status::ok && status != status::no_separation) || !std::filesystem::exists(attempt / "curves.csv"))
+    return false;
+  // The run's part of the row stays; the analysis's part is made anew.
+  const nlohmann::json old = result->at("row");
+  nlohmann::json row = base_row(point);
+  for (const char* key : {"stop_reason", "steps", "final_strain", "broken_bonds", "dt", "wall_time"})
+    if (old.contains(key)) row[key] = old.at(key);
+  status = row.value("stop_reason", "") == "separated" ? status::ok : status::no_separation;
+  std::string why;
+  if (status == status::no_separation)
+    why = fmt::format("not separated at the {} stop (strain {:.4g} %, {} steps)", row.value("stop_reason", ""),
+                      row.value("final_strain", 0.0), row.value("steps", std::uint64_t(0)));
+  analyse_attempt(attempt, row, status, why);
+  row["status"] = status;
+  if (status != status::ok) {
+    row["accepted"] = 0;
+    row["why"] = why;
+  }
+  (*result)["status"] = status;
+  (*result)["row"] = row;
+  (*result)["analysis_version"] = version_string;
+  io::write_json_atomically(folder / "result.json", *result);
+  return true;
 }
 
 nlohmann::json result_row(const Plan& plan, const Point& point) {

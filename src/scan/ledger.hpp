@@ -43,6 +43,11 @@ void check_result_matches(const Plan& plan, const Point& point, const nlohmann::
 std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, const Sample& sample,
                                         int threads);
 
+// Analyses a finished point's curve again with this version's analysis (the run is kept): rewrites
+// its analysis.json and its result's row. False when the point is not finished, has no curve (an
+// unstable or failed run) or another process holds it.
+bool reanalyze_point(const Plan& plan, const Point& point);
+
 // The point's results.csv row: from its result when finished, else its parameters and state.
 nlohmann::json result_row(const Plan& plan, const Point& point);
 

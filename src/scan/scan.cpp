@@ -212,8 +212,9 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
                      fmt::format("{:g} points, more than the {} a scan folder holds", points, max_points),
                      "split the scan into several configs with their own [scan] output");
   const Section rules(root, "rules",
-                      {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_min_steps",
-                       "ramp_max_steps", "max_strain", "max_strain_factor", "max_strain_min"},
+                      {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_fraction", "ramp_min_steps",
+                       "ramp_max_steps", "max_strain", "max_strain_factor", "max_strain_min", "interval",
+                       "rows_to_first_break"},
                       source);
   if (const auto* dt = rules.get("dt"); dt && !(dt->is_string() && rules.text("dt", "") == "auto")) {
     c.dt = rules.number("dt", 0.0);
@@ -221,9 +222,12 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
       throw InputError(rules.where("dt"), "must be > 0 (s) or \"auto\"", "write dt = \"auto\"");
   }
   c.ramp = rules.text("ramp", c.ramp);
-  if (c.ramp != "scaled" && c.ramp != "base")
+  if (c.ramp != "scaled" && c.ramp != "strain" && c.ramp != "base")
     throw InputError(rules.where("ramp"), "'" + c.ramp + "' is not a ramp rule",
-                     "use \"scaled\" or \"base\"");
+                     "use \"scaled\", \"strain\" or \"base\"");
+  c.ramp_fraction = rules.number("ramp_fraction", c.ramp_fraction);
+  if (!(c.ramp_fraction > 0 && c.ramp_fraction <= 1))
+    throw InputError(rules.where("ramp_fraction"), "must lie in (0, 1]", "e.g. ramp_fraction = 0.1");
   c.ramp_steps = rules.integer("ramp_steps", c.ramp_steps);
   c.ramp_b_d = rules.number("ramp_b_d", c.ramp_b_d);
   c.ramp_exponent = rules.number("ramp_exponent", c.ramp_exponent);
@@ -243,6 +247,14 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
   if (!(c.max_strain_factor > 0) || !(c.max_strain_min > 0))
     throw InputError(rules.where("max_strain_factor"), "max_strain_factor and max_strain_min must be > 0",
                      "e.g. max_strain_factor = 20, max_strain_min = 1");
+  c.interval = rules.text("interval", c.interval);
+  if (c.interval != "scaled" && c.interval != "base")
+    throw InputError(rules.where("interval"), "'" + c.interval + "' is not an output-interval rule",
+                     "use \"scaled\" or \"base\"");
+  c.rows_to_first_break = rules.number("rows_to_first_break", c.rows_to_first_break);
+  if (!(c.rows_to_first_break >= 10 && c.rows_to_first_break <= 1e6))
+    throw InputError(rules.where("rows_to_first_break"), "must lie in [10, 1e6] rows",
+                     "e.g. rows_to_first_break = 400");
   return c;
 }
 
@@ -264,11 +276,14 @@ nlohmann::json to_json(const ScanConfig& c) {
             {"ramp_steps", c.ramp_steps},
             {"ramp_b_d_mm", c.ramp_b_d},
             {"ramp_exponent", c.ramp_exponent},
+            {"ramp_fraction", c.ramp_fraction},
             {"ramp_min_steps", c.ramp_min_steps},
             {"ramp_max_steps", c.ramp_max_steps},
             {"max_strain", c.max_strain},
             {"max_strain_factor", c.max_strain_factor},
-            {"max_strain_min_percent", c.max_strain_min}}}};
+            {"max_strain_min_percent", c.max_strain_min},
+            {"interval", c.interval},
+            {"rows_to_first_break", c.rows_to_first_break}}}};
 }
 
 loading::RunConfig base_config(const ScanConfig& config) {
@@ -329,9 +344,35 @@ double mean_rest_length(const Sample& sample) {
 
 std::string point_name(double k_n, double b_d) { return fmt::format("kn_{}_bd_{}", k_n, b_d); }
 
+namespace {
+
+// What the per-point rules need of the sample: its critical dt at one stiffness (every spring of
+// the sample is a multiple of k_n, so the limit scales as 1/sqrt(k_n)) and the plate separation.
+struct StepScale {
+  double k_n = 0.0;          // N/mm, where critical_dt was measured
+  double critical_dt = 0.0;  // s
+  double plate_separation = 0.0;  // mm
+};
+
+StepScale step_scale(const loading::RunConfig& base, const Sample& sample) {
+  const dem::System system(sample, base.dem_params(sample.density));
+  return {base.bond_stiffness, system.critical_dt(), system.initial_plate_separation()};
+}
+
+// Steps the plate needs at full speed to reach `strain_percent` at stiffness k_n.
+double steps_to_strain(const StepScale& scale, const loading::RunConfig& base, const ScanConfig& config,
+                       double k_n, double strain_percent) {
+  const double dt = config.dt ? *config.dt : base.dt_safety * scale.critical_dt * std::sqrt(scale.k_n / k_n);
+  return strain_percent / 100.0 * scale.plate_separation / (base.speed * dt);
+}
+
+}  // namespace
+
 Plan make_plan(const ScanConfig& config, const Sample& sample) {
   const loading::RunConfig base = base_config(config);
   const double rest_length = mean_rest_length(sample);
+  const bool needs_steps = config.ramp == "strain" || config.interval == "scaled";
+  const StepScale scale = needs_steps ? step_scale(base, sample) : StepScale{};
   Plan plan;
   plan.folder = config.output;
   if (std::error_code ec;
@@ -357,17 +398,30 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
     // A gentler start for small b_d (paper section 3: 10^4 steps for large breaking strains, up to
     // 10^6 where samples break at small strains): the shock of the start must stay below the strain
     // that breaks a bond, which scales with b_d.
+    // "strain" instead ends the ramp at a fraction of the first-break strain whatever k_n is, so the
+    // plate reaches full speed before anything breaks (a ramp in steps is long in strain at small k_n,
+    // where dt is large); the wave transit time is the same number of steps at every k_n.
+    const double first_break = 100.0 * (base.break_rule == "relative" ? b : b / rest_length);  // %
     p.ramp_steps = base.ramp_steps;
-    if (config.ramp == "scaled") {
-      const double steps = double(config.ramp_steps) * std::pow(config.ramp_b_d / b, config.ramp_exponent);
+    if (config.ramp == "scaled" || config.ramp == "strain") {
+      // The ramp v/2 (1 - cos) covers half the strain that full speed would in the same steps.
+      const double steps =
+          config.ramp == "scaled"
+              ? double(config.ramp_steps) * std::pow(config.ramp_b_d / b, config.ramp_exponent)
+              : 2.0 * config.ramp_fraction * steps_to_strain(scale, base, config, k, first_break);
       p.ramp_steps = std::clamp(std::int64_t(std::llround(std::min(steps, 9e18))), config.ramp_min_steps,
                                 config.ramp_max_steps);
     }
+    // Curve rows fine enough to resolve a peak wherever it lies: the steps to the first-break strain
+    // differ by orders of magnitude between points.
+    p.output_interval = base.output_interval;
+    if (config.interval == "scaled")
+      p.output_interval = std::max<std::int64_t>(
+          1, std::llround(std::min(steps_to_strain(scale, base, config, k, first_break) / config.rows_to_first_break, 1e12)));
     // Stop a fixed multiple past the strain where bonds start to break (b_d / r0), never later than
     // the base config's max_strain: runs differ by orders of magnitude in the strain they need.
     p.max_strain = base.max_strain;
     if (config.max_strain == "scaled") {
-      const double first_break = 100.0 * (base.break_rule == "relative" ? b : b / rest_length);
       p.max_strain = round6(std::clamp(config.max_strain_factor * first_break,
                                        std::min(config.max_strain_min, base.max_strain), base.max_strain));
     }
@@ -378,6 +432,7 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
     p.overrides.push_back(config.dt ? fmt::format("time.dt={}", *config.dt) : "time.dt=\"auto\"");
     p.overrides.push_back(fmt::format("loading.ramp_steps={}", p.ramp_steps));
     p.overrides.push_back(fmt::format("stop.max_strain={}", p.max_strain));
+    if (config.interval == "scaled") p.overrides.push_back(fmt::format("output.interval={}", p.output_interval));
     plan.points.push_back(std::move(p));
   }
   // Bad input fails before anything runs: every point's config, and a given dt against each point's
@@ -408,6 +463,7 @@ nlohmann::json to_json(const Plan& plan) {
                       {"folder", "points/" + p.name},
                       {"ramp_steps", p.ramp_steps},
                       {"max_strain_percent", p.max_strain},
+                      {"output_interval", p.output_interval},
                       {"overrides", p.overrides}});
   return {{"base", plan.base.string()},
           {"scan_config", plan.scan_config},
@@ -431,6 +487,7 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
     p.name = point_name(p.k_n, p.b_d);
     p.ramp_steps = j.at("ramp_steps").get<std::int64_t>();
     p.max_strain = j.at("max_strain_percent").get<double>();
+    p.output_interval = j.value("output_interval", std::int64_t{0});  // plans before 0.2 lack it
     p.overrides = j.at("overrides").get<std::vector<std::string>>();
     plan.points.push_back(std::move(p));
   }

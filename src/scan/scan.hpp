@@ -32,7 +32,8 @@ struct ScanConfig {
   std::vector<std::pair<double, double>> listed;  // [[points]] (k_n N/mm, b_d mm)
   // [rules]
   std::optional<double> dt;               // s; empty: "auto" = time.safety x critical dt of each point
-  std::string ramp = "scaled";            // "scaled" | "base"
+  std::string ramp = "scaled";            // "scaled" | "strain" | "base"
+  double ramp_fraction = 0.1;             // "strain": the ramp covers this fraction of the first-break strain
   std::int64_t ramp_steps = 10000;        // steps at b_d = ramp_b_d
   double ramp_b_d = 0.5;                  // mm
   double ramp_exponent = 1.0;             // 1: steps ∝ (ramp_b_d / b_d)^exponent
@@ -41,6 +42,8 @@ struct ScanConfig {
   std::string max_strain = "base";        // "base" | "scaled"
   double max_strain_factor = 20.0;        // 1: stop at this multiple of the first-break strain
   double max_strain_min = 1.0;            // %: never stop earlier than this
+  std::string interval = "base";          // "base" | "scaled": curve rows every output.interval steps,
+  double rows_to_first_break = 400.0;     // or so that this many rows lie below the first-break strain
 };
 
 // Reads a scan config; relative paths (base, sample.file) are taken from the config's folder.
@@ -60,6 +63,7 @@ struct Point {
   std::string name;                    // folder under points/, e.g. "kn_1000_bd_0.005"
   std::int64_t ramp_steps = 0;         // steps
   double max_strain = 0.0;             // %
+  std::int64_t output_interval = 0;    // steps between curve rows
   std::vector<std::string> overrides;  // applied to the base config (threads excluded)
 };
 

@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -82,6 +83,49 @@ TEST(ScanPlan, RulesScaleTheRampAndTheStopWithBreakingDistance) {
   EXPECT_EQ(run.break_distance, 0.004);
   EXPECT_EQ(run.threads, 3);
   EXPECT_FALSE(run.dt.has_value());  // dt = "auto": from k_n and the lightest particle
+}
+
+TEST(ScanPlan, StrainRulesEndTheRampAndSpaceTheRowsByTheFirstBreakStrain) {
+  TempDir dir;
+  write(dir / "s.toml", "[scan]\nbase = '" + examples +
+                            "block.toml'\n[grid]\nk_n = { from = 1e2, to = 1e4, count = 2 }\n"
+                            "b_d = { from = 0.002, to = 0.02, count = 2 }\n[rules]\nramp = \"strain\"\n"
+                            "ramp_fraction = 0.1\nramp_min_steps = 1\ninterval = \"scaled\"\nrows_to_first_break = 10\n");
+  const ScanConfig config = load_scan_config(dir / "s.toml");
+  const Plan plan = make_plan(config, unit_block());
+  ASSERT_EQ(plan.points.size(), 4u);
+  // Steps to the first-break strain 100 b_d / r0 (r0 = 1 mm) at full speed, from the engine's dt.
+  const loading::RunConfig base = base_config(config);
+  const auto steps_to_first_break = [&](const Point& p) {
+    const auto run = point_config(plan, p, 1);
+    const dem::System system(unit_block(), run.dem_params(unit_block().density));
+    const double dt = run.dt_safety * system.critical_dt();
+    return p.b_d * system.initial_plate_separation() / (base.speed * dt);
+  };
+  for (const auto& p : plan.points) {
+    const double steps = steps_to_first_break(p);
+    // The ramp v/2 (1 - cos) over T covers half of v T: 10 % of the first-break strain takes 0.2 x steps.
+    EXPECT_NEAR(double(p.ramp_steps), 0.2 * steps, 1.0) << p.name;
+    EXPECT_NEAR(double(p.output_interval), steps / 10.0, 1.0) << p.name;
+    EXPECT_NE(std::find(p.overrides.begin(), p.overrides.end(), fmt::format("output.interval={}", p.output_interval)),
+              p.overrides.end());
+  }
+  // dt ~ 1/sqrt(k_n): 100 times the stiffness, ten times the steps to the same strain; b_d ten
+  // times larger, ten times the steps.
+  EXPECT_NEAR(steps_to_first_break(plan.points[2]) / steps_to_first_break(plan.points[0]), 10.0, 1e-9);
+  EXPECT_NEAR(double(plan.points[3].output_interval) / double(plan.points[2].output_interval), 10.0, 0.2);
+  // Bad values are refused with the key.
+  write(dir / "bad.toml", "[scan]\nbase = '" + examples + "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\n"
+                          "interval = \"fine\"\n");
+  EXPECT_THROW((void)load_scan_config(dir / "bad.toml"), InputError);
+  write(dir / "bad.toml", "[scan]\nbase = '" + examples + "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\n"
+                          "ramp = \"strain\"\nramp_fraction = 2\n");
+  try {
+    (void)load_scan_config(dir / "bad.toml");
+    ADD_FAILURE() << "ramp_fraction = 2 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rules.ramp_fraction"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ScanPlan, PaperScanSpansTheRangesOfSectionFive) {
@@ -281,6 +325,29 @@ std::optional<int> interrupt_scan(const std::filesystem::path& config, const std
   ::kill(child, signal);
   ::waitpid(child, &status, 0);
   return status;
+}
+
+TEST(ScanCommand, ReanalyzeRewritesTheAnalysisAndKeepsTheRuns) {
+  TempDir dir;
+  const auto scan = dir / "scan";
+  const auto first = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " + shell_quoted(scan));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  std::filesystem::copy_file(scan / "results.csv", dir / "before.csv");
+  const auto point = scan / "points" / "kn_100_bd_0.002";
+  const auto result_before = nlohmann::json::parse(slurp(point / "result.json"));
+  const auto attempt = point / result_before.at("attempt").get<std::string>();
+  const std::string curves = slurp(attempt / "curves.csv");
+  // A stale analysis (as an older version would have left it) is replaced by this version's.
+  std::filesystem::remove(attempt / "analysis.json");
+  const auto again = run_rupture("scan --reanalyze " + shell_quoted(scan));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("re-analysed 6 of 6 points"), std::string::npos) << again.out;
+  EXPECT_TRUE(std::filesystem::exists(attempt / "analysis.json"));
+  EXPECT_EQ(slurp(attempt / "curves.csv"), curves);  // the run is untouched
+  EXPECT_EQ(physics(scan / "results.csv"), physics(dir / "before.csv"));  // same analysis, same numbers
+  const auto result_after = nlohmann::json::parse(slurp(point / "result.json"));
+  EXPECT_EQ(result_after.at("row").at("steps"), result_before.at("row").at("steps"));
+  EXPECT_EQ(run_rupture("scan --reanalyze " + shell_quoted(dir / "nothing")).exit_code, 2);
 }
 
 TEST(ScanCommand, KilledMidwayAndRestartedGivesTheSameResults) {
