@@ -144,8 +144,16 @@ Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice) {
   return curve;
 }
 
-std::vector<double> select_break_strains(const io::CsvTable& breaks, double scale) {
-  return scaled_column(breaks, breaks.require("strain"), scale);
+BreakLog select_breaks(const io::CsvTable& breaks, double scale, std::optional<std::pair<double, double>> layer_heights) {
+  BreakLog log;
+  log.strain = scaled_column(breaks, breaks.require("strain"), scale);
+  const auto y = breaks.find("y");
+  if (layer_heights && y && layer_heights->second > layer_heights->first) {
+    const auto [bottom, top] = *layer_heights;
+    log.height = scaled_column(breaks, *y, 1.0);
+    for (double& h : log.height) h = (h - bottom) / (top - bottom);
+  }
+  return log;
 }
 
 std::size_t minimum_rows(const AnalysisOptions& options) {
@@ -377,7 +385,7 @@ DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vecto
 
 }  // namespace
 
-AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const std::vector<double>& break_strains) {
+AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks) {
   AnalysisResult r;
   r.source = curve.source;
   r.strain_unit = curve.strain_unit;
@@ -594,9 +602,30 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
         break;
       }
     }
-    f.break_spread = break_spread(break_strains, x_c);
+    double running_max = 0.0, dip = 0.0;  // acoustic waves: the loading force falling back before x_c
+    for (std::size_t i = 0; i < force_top; ++i) {
+      running_max = std::max(running_max, r.filtered_force[i]);
+      dip = std::max(dip, running_max - r.filtered_force[i]);
+    }
+    if (F_top > 0.0) f.loading_undulation = dip / F_top;
+    // Breaks after the loading phase (fragments ringing, the extra pull after separation) say
+    // nothing of how the sample failed.
+    BreakLog loading_breaks;
+    const bool heights = breaks.height.size() == breaks.strain.size();
+    for (std::size_t i = 0; i < breaks.strain.size(); ++i) {
+      if (!(breaks.strain[i] <= r.loading_phase_end)) continue;
+      loading_breaks.strain.push_back(breaks.strain[i]);
+      if (heights) loading_breaks.height.push_back(breaks.height[i]);
+    }
+    f.break_spread = break_spread(loading_breaks.strain, x_c);
+    f.crack = crack_features(loading_breaks, x_c);
     if (r.Gamma) f.gamma = r.Gamma->value;
     r.mechanism = classify(f, options.mechanism);
+    // Ductile-like: x_c cannot be identified (paper section 5.2), so the curve is left out.
+    // It is the first thing said of such a curve, whatever else failed.
+    if (r.mechanism->mechanism == Mechanism::ductile)
+      r.rejection = "ductile-like breaking, x_c not identifiable: " + r.mechanism->reason +
+                    (r.rejection.empty() ? "" : "; also: " + r.rejection);
   }
   r.accepted = r.rejection.empty();
   return r;
@@ -725,12 +754,23 @@ nlohmann::json to_json(const AnalysisResult& r) {
                 {"A_r_in_band", optional_json(r.alpha.energy_ratio_in_band)}};
   if (r.mechanism) {
     const auto& f = r.features;
-    j["mechanism"] = {{"class", to_string(r.mechanism->mechanism)}, {"reason", r.mechanism->reason},
+    nlohmann::json crack = nullptr;
+    if (f.crack)
+      crack = {{"height_over_l0", f.crack->height},
+               {"distance_to_plate_over_l0", f.crack->to_plate},
+               {"localisation", f.crack->localisation},
+               {"planes", f.crack->planes}};
+    // A rejected curve carries no class (a ductile-like one is rejected for being ductile-like).
+    j["mechanism"] = {{"class", r.accepted ? nlohmann::json(to_string(r.mechanism->mechanism)) : nlohmann::json(nullptr)},
+                      {"features_say", to_string(r.mechanism->mechanism)},
+                      {"reason", r.mechanism->reason},
                       {"features", {{"critical_strain_percent", optional_json(f.critical_strain_percent)},
                                     {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
                                     {"significant_force_maxima", f.force_maxima},
                                     {"break_spread_over_x_c", optional_json(f.break_spread)},
                                     {"post_peak_decay_over_x_c", optional_json(f.post_peak_decay)},
+                                    {"loading_undulation_over_F_c", optional_json(f.loading_undulation)},
+                                    {"crack", crack},
                                     {"Gamma", optional_json(f.gamma)}}}};
   } else {
     j["mechanism"] = nullptr;

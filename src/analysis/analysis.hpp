@@ -55,8 +55,11 @@ CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& c
 // column or a non-finite value.
 Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice = {});
 
-// Strains of the bond breaks in a `breaks.csv` (column `strain`), multiplied by `scale`.
-std::vector<double> select_break_strains(const io::CsvTable& breaks, double scale = 1.0);
+// The bond breaks of a `breaks.csv`: column `strain` multiplied by `scale`; with the mean heights
+// (mm) of the bottom and top glued layers, also each break's height between them from column `y`
+// (the pull axis), when the table has it.
+BreakLog select_breaks(const io::CsvTable& breaks, double scale = 1.0,
+                       std::optional<std::pair<double, double>> layer_heights = std::nullopt);
 
 struct AcceptanceRules {
   double min_prominence = 0.1;       // F and ℰ peaks must rise this fraction of their height above their bases
@@ -118,7 +121,7 @@ struct AnalysisResult {
   int bootstrap_replicates = 0, bootstrap_failed = 0;
   AlphaEstimate alpha;
   MechanismFeatures features;
-  std::optional<MechanismClass> mechanism;
+  std::optional<MechanismClass> mechanism;  // the class the features give; reported only when accepted
   int force_maxima = 0;
   bool accepted = false;
   std::string rejection;           // why not accepted
@@ -135,10 +138,10 @@ std::size_t minimum_rows(const AnalysisOptions& options);
 // energy-rate maximum came before the force maximum, after it, or the data cannot tell.
 std::string precursor_order(double ci95_low, double ci95_high);
 
-// Runs the whole pipeline. `break_strains` may be empty. Throws InputError when the curve has
+// Runs the whole pipeline. `breaks` may be empty (then the class rests on the curves alone). Throws InputError when the curve has
 // fewer distinct strains than minimum_rows() (naming the source). Rejections are not errors: they
 // come back with accepted = false and the reason.
-AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const std::vector<double>& break_strains = {});
+AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks = {});
 
 // Everything in the result except the grid curves, each number as {value, error, unit}; the
 // posterior as arrays.

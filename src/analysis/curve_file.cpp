@@ -1,5 +1,6 @@
 #include "analysis/curve_file.hpp"
 
+#include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "rupture/version.hpp"
 
@@ -41,6 +42,19 @@ nlohmann::json inputs_json(const CurveFileInputs& in, const std::string& breaks_
           {"grid_points", a.delay.grid_points}};
 }
 
+// The mean heights (mm) of the glued layers from a rupture run.json beside the breaks (a run of
+// another code has none: its breaks then carry no heights).
+std::optional<std::pair<double, double>> glued_layer_heights(const std::filesystem::path& run_json) {
+  if (!std::filesystem::exists(run_json)) return std::nullopt;
+  try {
+    const auto run = nlohmann::json::parse(io::read_text_file(run_json, io::max_config_bytes));
+    const auto& layers = run.at("sample").at("glued_layer_heights");
+    return std::pair{layers.at("bottom").get<double>(), layers.at("top").get<double>()};
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;  // a run.json of rupture 0.1, or not rupture's
+  }
+}
+
 }  // namespace
 
 CurveFileAnalysis analyze_curve_file(const CurveFileInputs& in, const std::string& tool) {
@@ -51,11 +65,12 @@ CurveFileAnalysis analyze_curve_file(const CurveFileInputs& in, const std::strin
     const auto beside = in.curves.parent_path() / "breaks.csv";
     if (std::filesystem::exists(beside)) breaks_path = beside.string();
   }
-  std::vector<double> break_strains;
+  BreakLog breaks;
   if (!breaks_path.empty())
-    break_strains = select_break_strains(io::read_csv(breaks_path), in.columns.strain_scale);
+    breaks = select_breaks(io::read_csv(breaks_path), in.columns.strain_scale,
+                           glued_layer_heights(std::filesystem::path(breaks_path).parent_path() / "run.json"));
   CurveFileAnalysis out;
-  out.result = analyze_curve(curve, in.options, break_strains);
+  out.result = analyze_curve(curve, in.options, breaks);
   out.document = {{"tool", tool}, {"version", version_string}, {"inputs", inputs_json(in, breaks_path)}};
   out.document.update(to_json(out.result));
   return out;

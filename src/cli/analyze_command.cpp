@@ -64,7 +64,11 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
                r.alpha.gamma_band_high, yes_no(r.alpha.gamma_in_band), r.alpha.energy_ratio_band_low,
                r.alpha.energy_ratio_band_high, yes_no(r.alpha.energy_ratio_in_band));
   }
-  if (r.mechanism) fmt::print("  mechanism   {} ({})\n", analysis::to_string(r.mechanism->mechanism), r.mechanism->reason);
+  if (r.mechanism)
+    fmt::print("  mechanism   {} ({})\n",
+               r.accepted ? analysis::to_string(r.mechanism->mechanism)
+                          : fmt::format("none, rejected; the features say {}", analysis::to_string(r.mechanism->mechanism)),
+               r.mechanism->reason);
   fmt::print("  {}\n", r.accepted ? "accepted" : "REJECTED: " + r.rejection);
   fmt::print("  wrote {}\n", output.string());
 }

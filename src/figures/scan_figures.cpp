@@ -24,15 +24,14 @@ struct ClassStyle {
   const char* name;
   const char* color;
 };
-constexpr ClassStyle class_styles[] = {{"brittle", "#1f77b4"},
-                                       {"hyper-elastic", "#d62728"},
-                                       {"semi-ductile", "#2ca02c"},
-                                       {"ductile", "#ff7f0e"}};
+// Classes of accepted points; ductile-like points are rejected (x_c cannot be identified) and drawn
+// with the other rejected points.
+constexpr ClassStyle class_styles[] = {{"brittle", "#1f77b4"}, {"hyper-elastic", "#d62728"}, {"semi-ductile", "#2ca02c"}};
 
 // One results.csv row, the fields the figures read.
 struct Point {
   double k_n = 0.0, b_d = 0.0;
-  std::string status, mechanism;
+  std::string status, mechanism, why;
   bool accepted = false;
   std::optional<double> x_c, x_c_err, delta_x, delta_lo68, delta_hi68, A_r, A_r_err, gamma;
 
@@ -49,6 +48,7 @@ std::vector<Point> read_points(const scan::ResultsTable& table) {
     p.b_d = *b_d;
     p.status = table.text(r, "status");
     p.mechanism = table.text(r, "class");
+    p.why = table.text(r, "why");
     p.accepted = table.number(r, "accepted").value_or(0.0) == 1.0;
     p.x_c = table.number(r, "x_c");
     p.x_c_err = table.number(r, "x_c_err");
@@ -109,30 +109,37 @@ std::optional<Figure> mechanism_map(const std::vector<Point>& points) {
   };
   for (const auto& style : class_styles) {
     add_group(figure, panel, std::string("class ") + style.name, header, columns_where([&](const Point& p) {
-                return p.status == scan::status::ok && p.mechanism == style.name;
+                return p.analysed() && p.mechanism == style.name;
               }),
               {.title = style.name, .style = Style::points, .color = style.color, .point_size = 2.0});
   }
-  const auto unclassified = [](const Point& p) {
-    return p.status != scan::status::ok || std::none_of(std::begin(class_styles), std::end(class_styles),
-                                                        [&](auto& s) { return p.mechanism == s.name; });
-  };
-  add_group(figure, panel, "points without a class (not separated, unstable, failed or unfinished)", header,
-            columns_where(unclassified),
-            {.title = "no class (not separated, failed)",
+  const auto rejected = [](const Point& p) { return p.status == scan::status::ok && !p.accepted; };
+  const auto ductile_like = [](const Point& p) { return p.why.rfind("ductile-like", 0) == 0; };
+  add_group(figure, panel, "rejected as ductile-like (x_c not identifiable)", header,
+            columns_where([&](const Point& p) { return rejected(p) && ductile_like(p); }),
+            {.title = "rejected: ductile-like", .style = Style::points, .color = "#ff7f0e", .point_type = 2,
+             .point_size = 2.0});
+  add_group(figure, panel, "rejected for another reason (see results.csv why)", header,
+            columns_where([&](const Point& p) { return rejected(p) && !ductile_like(p); }),
+            {.title = "rejected: peaks not resolved", .style = Style::points, .color = "#555555", .point_type = 2,
+             .point_size = 2.0});
+  add_group(figure, panel, "points not analysed (not separated, unstable, failed or unfinished)", header,
+            columns_where([](const Point& p) { return p.status != scan::status::ok; }),
+            {.title = "not separated or failed",
              .style = Style::points,
-             .color = "#888888",
-             .point_type = 2,
+             .color = "#aaaaaa",
+             .point_type = 6,
              .point_size = 1.5});
   add_group(
       figure, panel, fmt::format("points with Gamma > {}", gamma_far), header,
-      columns_where([](const Point& p) { return p.gamma && *p.gamma > gamma_far; }),
+      columns_where([](const Point& p) { return p.analysed() && p.gamma && *p.gamma > gamma_far; }),
       {.title = "Γ > 5", .style = Style::points, .color = "#000000", .point_type = 3, .point_size = 3.0});
   figure.panels.push_back(std::move(panel));
   figure.caption =
       "Mechanism map (the paper's figure 15): each scan point at its bond stiffness k_n and breaking "
-      "distance b_d, coloured by its breaking-mechanism class; a star marks Γ > 5, an energy maximum "
-      "far behind the force maximum.";
+      "distance b_d, coloured by its breaking-mechanism class (accepted points only); crosses are points "
+      "the analysis rejected (orange: ductile-like, x_c not identifiable), circles runs that did not "
+      "separate or failed; a star marks Γ > 5, an energy maximum far behind the force maximum.";
   return figure;
 }
 

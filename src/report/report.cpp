@@ -146,6 +146,13 @@ std::string provenance(const fs::path& folder, const std::string& command) {
 }
 
 // The one sentence a reader wants first: where the precursor was and how far ahead of failure.
+
+// The class, or why there is none: a rejected curve carries no class.
+std::string mechanism_text(const json& mechanism) {
+  if (mechanism["class"].is_string()) return io::escape_markup(mechanism["class"].get<std::string>());
+  return "none (rejected; its features say " + io::escape_markup(mechanism.value("features_say", std::string("?"))) + ")";
+}
+
 std::string run_summary(const json& analysis) {
   if (analysis.is_null()) {
     return "<p class=\"summary\">Not analysed yet: run <code>rupture analyze curves.csv</code> in this "
@@ -175,10 +182,7 @@ std::string run_summary(const json& analysis) {
   else
     text += " Analysis rejected: " +
             io::escape_markup(analysis.value("rejection", std::string("no reason given"))) + ".";
-  if (analysis["mechanism"].is_object()) {
-    text += " Breaking mechanism: <strong>" + io::escape_markup(analysis["mechanism"].value("class", "")) +
-            "</strong>.";
-  }
+  if (analysis["mechanism"].is_object()) text += " Breaking mechanism: <strong>" + mechanism_text(analysis["mechanism"]) + "</strong>.";
   return "<p class=\"summary\">" + text + "</p>\n";
 }
 
@@ -225,13 +229,20 @@ std::string analysis_section(const json& analysis) {
     const auto& value = alpha["from_delta_over_x_p"];
     const auto flag = [](const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "–"; };
     html += "<p>Fiber-bundle comparison (power law p(x) = (1+α) x<sup>α</sup>):</p>\n";
-    html += table({"α from δ_x/x_p (eq. 18)", "Γ within the FBM band 0 ≤ α ≤ 5", "A_r within the FBM band"},
-                  {{value.is_object() ? number_text(value["value"].get<double>()) : "–",
-                    flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
+    // analysis.json writes α as a plain number (null when δ_x/x_p implies none).
+    const auto number_or_dash = [](const json& v) { return v.is_number() ? number_text(v.get<double>()) : "–"; };
+    const auto& range = alpha["ci68"];
+    const std::string interval =
+        range.is_array() && range.size() == 2 && (range[0].is_number() || range[1].is_number())
+            ? "[" + number_or_dash(range[0]) + ", " + number_or_dash(range[1]) + "]"
+            : "–";
+    html += table({"α from δ_x/x_p (eq. 18)", "α from δ_x's 68 % interval", "Γ within the FBM band 0 ≤ α ≤ 5",
+                   "A_r within the FBM band"},
+                  {{number_or_dash(value), interval, flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
   }
   if (const auto& mechanism = analysis["mechanism"]; mechanism.is_object()) {
-    html += "<p>Breaking mechanism: <strong>" + io::escape_markup(mechanism.value("class", "")) +
-            "</strong> — " + io::escape_markup(mechanism.value("reason", "")) + "</p>\n";
+    html += "<p>Breaking mechanism: <strong>" + mechanism_text(mechanism) + "</strong> — " +
+            io::escape_markup(mechanism.value("reason", "")) + "</p>\n";
   }
   return html;
 }

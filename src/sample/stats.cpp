@@ -43,10 +43,15 @@ SampleStats compute_stats(const Sample& sample, std::size_t histogram_bins) {
   std::vector<std::size_t> degree(s.particles, 0);
   for (const Bond& b : sample.bonds) ++degree[b.i], ++degree[b.j];
   s.isolated = static_cast<std::size_t>(std::count(degree.begin(), degree.end(), 0u));
-  for (ParticleGroup g : sample.group) {
+  for (std::size_t i = 0; i < s.particles; ++i) {
+    const ParticleGroup g = sample.group[i];
     s.bottom_layer += g == ParticleGroup::bottom;
     s.top_layer += g == ParticleGroup::top;
+    if (g == ParticleGroup::bottom) s.bottom_layer_y += sample.position[i].y;
+    if (g == ParticleGroup::top) s.top_layer_y += sample.position[i].y;
   }
+  if (s.bottom_layer > 0) s.bottom_layer_y /= static_cast<double>(s.bottom_layer);
+  if (s.top_layer > 0) s.top_layer_y /= static_cast<double>(s.top_layer);
 
   // Largest overlap: only pairs closer than 2 r_max can overlap, so the cell grid finds them all.
   sample_detail::CellGrid grid(sample.box, 2.0 * s.r_max);
@@ -71,12 +76,14 @@ nlohmann::json to_json(const SampleStats& s) {
           {"radius", {{"min", s.r_min}, {"max", s.r_max}, {"mean", s.r_mean}}},
           {"radius_histogram", {{"bin_edges", s.radius_bin_edges}, {"counts", s.radius_histogram}}},
           {"glued_layers", {{"bottom", s.bottom_layer}, {"top", s.top_layer}}},
+          {"glued_layer_heights", {{"bottom", s.bottom_layer_y}, {"top", s.top_layer_y}}},
           {"max_overlap", s.max_overlap},
           {"total_mass", s.total_mass},
           {"units",
            {{"radius", "mm"},
             {"box_volume", "mm^3"},
             {"max_overlap", "mm"},
+            {"glued_layer_heights", "mm, mean y of each glued layer (y is the pull axis)"},
             {"total_mass", "g"},
             {"solid_fraction", "1"},
             {"mean_coordination", "bonds per particle"}}}};

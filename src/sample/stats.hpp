@@ -21,6 +21,7 @@ struct SampleStats {
   std::vector<double> radius_bin_edges;           // mm, bins + 1 edges from r_min to r_max
   std::vector<std::size_t> radius_histogram;      // particles per bin
   std::size_t bottom_layer = 0, top_layer = 0;    // particles glued to the bottom / top plate
+  double bottom_layer_y = 0.0, top_layer_y = 0.0;  // mm: mean height of each glued layer (pull axis y)
   double max_overlap = 0.0;  // mm: largest r_i + r_j - d over all pairs (0 if none overlap)
   double total_mass = 0.0;   // g
 };

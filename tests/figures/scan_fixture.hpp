@@ -1,4 +1,4 @@
-// tests/figures/scan_fixture: a small scan folder written by hand (results.csv with eight points and
+// tests/figures/scan_fixture: a small scan folder written by hand (results.csv with ten points and
 // their known classes, Γ and δ_x), so the scan figures and the scan report are tested without running
 // a scan. Shared by tests/figures and tests/report.
 #pragma once
@@ -14,8 +14,9 @@ namespace rupture::testing {
 
 // Counts the fixture holds, for the tests to check the figures against.
 struct ScanFixture {
-  static constexpr int points = 8;
-  static constexpr int brittle = 2, hyper_elastic = 1, semi_ductile = 1, ductile = 2;
+  static constexpr int points = 10;
+  static constexpr int brittle = 2, hyper_elastic = 1, semi_ductile = 3;
+  static constexpr int rejected_ductile = 1, rejected_other = 1;  // separated, rejected: no class
   static constexpr int without_class = 2;  // one not separated, one failed
   static constexpr int gamma_above_5 = 2;  // stars in figure 15, the Γ > 5 group of figure 17
   static constexpr int gamma_below_1 = 2, gamma_1_to_5 = 2;
@@ -39,8 +40,11 @@ inline void write_scan_fixture(const std::filesystem::path& folder) {
       {1e4, 1e-3, "ok", "brittle", 0.02, 0.006, 0.8, 1.25},
       {1e2, 1e-2, "ok", "hyper-elastic", 0.6, 0.15, 2.0, 1.10},
       {1e4, 1e-2, "ok", "semi-ductile", 0.3, 0.08, 3.5, 0.95},
-      {1e2, 1e-1, "ok", "ductile", 5.0, 0.9, 7.0, 0.80},
-      {1e4, 1e-1, "ok", "ductile", 2.0, -0.1, 12.0, 0.70},
+      {1e2, 1e-1, "ok", "semi-ductile", 5.0, 0.9, 7.0, 0.80},
+      {1e4, 1e-1, "ok", "semi-ductile", 2.0, -0.1, 12.0, 0.70},
+      {1e3, 1e-1, "ok", "rejected: ductile-like breaking, x_c not identifiable: 4 significant force maxima (>= 3)", 0,
+       0, 0, 0},
+      {1e3, 1e-2, "ok", "rejected: δ_x too uncertain", 0, 0, 0, 0},
       {1e2, 1.0, "no_separation", "", 0.0, 0.0, 0.0, 0.0},
       {1e4, 1.0, "error", "", 0.0, 0.0, 0.0, 0.0},
   };
@@ -48,7 +52,9 @@ inline void write_scan_fixture(const std::filesystem::path& folder) {
   int point = 0;
   for (const auto& r : table) {
     json row = {{"point", point++}, {"k_n", r.k_n}, {"b_d", r.b_d}, {"status", r.status}};
-    if (std::string(r.status) == "ok") {
+    if (const std::string mechanism = r.mechanism; mechanism.rfind("rejected: ", 0) == 0) {
+      row.update({{"accepted", 0}, {"why", mechanism.substr(10)}});
+    } else if (std::string(r.status) == "ok") {
       row.update({{"class", r.mechanism},
                   {"accepted", 1},
                   {"x_c", r.x_c},

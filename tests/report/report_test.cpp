@@ -248,6 +248,10 @@ TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
   if (!analysis.at("accepted").get<bool>()) {
     EXPECT_THAT(facts.body_text, HasSubstr("Analysis rejected"));
   }
+  // α as analysis.json gives it (a plain number), never a dash when it is there.
+  const auto& alpha = analysis.at("alpha").at("from_delta_over_x_p");
+  ASSERT_TRUE(alpha.is_number()) << "the block run should imply an α";
+  EXPECT_TRUE(has_cell(facts, fmt::format("{:.4g}", alpha.get<double>())));
   // The resolved config, key by key.
   EXPECT_TRUE(has_cell(facts, "bonds.stiffness"));
   EXPECT_TRUE(has_cell(facts, "1000"));
@@ -267,8 +271,11 @@ TEST(Report, ScanReportTablesEveryPoint) {
   expect_self_contained(facts, scan / "figures");
   EXPECT_THAT(facts.body_text,
               HasSubstr(fmt::format("{} points in results.csv, {} separated and accepted",
-                                    ScanFixture::points, ScanFixture::points - ScanFixture::without_class)));
-  EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "ductile"), ScanFixture::ductile);
+                                    ScanFixture::points,
+                                    ScanFixture::points - ScanFixture::without_class - ScanFixture::rejected_ductile -
+                                        ScanFixture::rejected_other)));
+  EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "semi-ductile"), ScanFixture::semi_ductile);
+  EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "ductile"), 0);
   EXPECT_TRUE(has_cell(facts, "still whole at max_strain"));
   EXPECT_TRUE(has_cell(facts, "k_n[N/mm]"));
 }
