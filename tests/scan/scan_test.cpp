@@ -144,6 +144,29 @@ TEST(ScanPlan, PaperScanSpansTheRangesOfSectionFive) {
               1e-5 * plan.points[7].max_strain);  // 6 digits
 }
 
+TEST(ScanPlan, TheStudyScansPlanTheirPoints) {
+  // examples/study: the scans docs/study.md reports, planned here on the unit block (the rules need
+  // only the sample's dt and rest length).
+  const struct {
+    const char* file;
+    std::size_t points;
+    const char* break_rule;
+  } scans[] = {{"study/scan-small-absolute.toml", 48, "absolute"},
+               {"study/scan-small-relative.toml", 49, "relative"},
+               {"study/scan-tissue-absolute.toml", 6, "absolute"}};
+  for (const auto& scan : scans) {
+    const ScanConfig config = load_scan_config(examples + scan.file);
+    const Plan plan = make_plan(config, unit_block());
+    EXPECT_EQ(plan.points.size(), scan.points) << scan.file;
+    EXPECT_EQ(base_config(config).break_rule, scan.break_rule) << scan.file;
+    EXPECT_DOUBLE_EQ(base_config(config).speed, 50.0) << scan.file;  // the paper's plate speed
+    for (const auto& p : plan.points) {
+      EXPECT_GE(p.ramp_steps, 500) << p.name;
+      EXPECT_GE(p.output_interval, 1) << p.name;
+    }
+  }
+}
+
 TEST(ScanPlan, ListedPointsFollowTheGridWithoutDuplicates) {
   TempDir dir;
   write(dir / "s.toml",
