@@ -226,6 +226,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
 
 bool reanalyze_point(const Plan& plan, const Point& point) {
   const auto folder = point_folder(plan, point);
+  if (!std::filesystem::exists(folder / "result.json")) return false;  // not finished (or never started)
   const io::FileLock lock(folder / "lock");
   if (!lock.held()) return false;  // a process is working on it
   auto result = read_result(plan, point);
