@@ -125,7 +125,7 @@ std::optional<Figure> mechanism_map(const std::vector<Point>& points) {
              .point_size = 2.0});
   add_group(figure, panel, "points not analysed (not separated, unstable, failed or unfinished)", header,
             columns_where([](const Point& p) { return p.status != scan::status::ok; }),
-            {.title = "not separated or failed",
+            {.title = "not separated, failed or not run",
              .style = Style::points,
              .color = "#aaaaaa",
              .point_type = 6,

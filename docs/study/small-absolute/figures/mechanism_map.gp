@@ -49,6 +49,6 @@ do for [format in formats] {
     '' index 1 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#d62728" title "hyper-elastic", \
     '' index 2 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile", \
     '' index 3 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#555555" title "rejected: peaks not resolved", \
-    '' index 4 using 1:2 with points pointtype 6 pointsize 1.5 linecolor rgb "#aaaaaa" title "not separated or failed"
+    '' index 4 using 1:2 with points pointtype 6 pointsize 1.5 linecolor rgb "#aaaaaa" title "not separated, failed or not run"
   unset output
 }

@@ -50,6 +50,6 @@ do for [format in formats] {
     '' index 2 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile", \
     '' index 3 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#ff7f0e" title "rejected: ductile-like", \
     '' index 4 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#555555" title "rejected: peaks not resolved", \
-    '' index 5 using 1:2 with points pointtype 6 pointsize 1.5 linecolor rgb "#aaaaaa" title "not separated or failed"
+    '' index 5 using 1:2 with points pointtype 6 pointsize 1.5 linecolor rgb "#aaaaaa" title "not separated, failed or not run"
   unset output
 }
