@@ -171,8 +171,10 @@ TEST(MonitorCli, FollowStartsOverWhenTheFileIsTruncatedOrReplaced) {
       out << "strain[1],force[1],elastic_energy[1]\n";
       rows(out, 0, 500);  // the first attempt's rows
     }
+    // The pauses leave the monitor time to start and read the first rows: 300 ms was too short
+    // for a sanitizer build on a loaded machine, which then never saw the file shrink.
     std::thread writer([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
       if (replace) {
         std::ofstream out(dir / "new.csv");
         out << "strain[1],force[1],elastic_energy[1]\n";
@@ -181,11 +183,11 @@ TEST(MonitorCli, FollowStartsOverWhenTheFileIsTruncatedOrReplaced) {
       } else {
         std::ofstream(file, std::ios::trunc) << "strain[1],force[1],elastic_energy[1]\n";
       }
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
       std::ofstream out(file, std::ios::app);
       rows(out, 0, c.strain.size());
     });
-    const auto r = run_rupture("monitor " + quoted(file) + " --follow --idle-timeout 1.5 --poll 10");
+    const auto r = run_rupture("monitor " + quoted(file) + " --follow --idle-timeout 3 --poll 10");
     writer.join();
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find(replace ? "the file was replaced; reading it again from the start"
