@@ -602,21 +602,10 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
         break;
       }
     }
-    double running_max = 0.0, dip = 0.0;  // acoustic waves: the loading force falling back before x_c
-    for (std::size_t i = 0; i < force_top; ++i) {
-      running_max = std::max(running_max, r.filtered_force[i]);
-      dip = std::max(dip, running_max - r.filtered_force[i]);
-    }
-    if (F_top > 0.0) f.loading_undulation = dip / F_top;
+    if (F_top > 0.0) f.loading_undulation = deepest_dip(std::span<const double>(r.filtered_force).first(force_top)) / F_top;
     // Breaks after the loading phase (fragments ringing, the extra pull after separation) say
     // nothing of how the sample failed.
-    BreakLog loading_breaks;
-    const bool heights = breaks.height.size() == breaks.strain.size();
-    for (std::size_t i = 0; i < breaks.strain.size(); ++i) {
-      if (!(breaks.strain[i] <= r.loading_phase_end)) continue;
-      loading_breaks.strain.push_back(breaks.strain[i]);
-      if (heights) loading_breaks.height.push_back(breaks.height[i]);
-    }
+    const BreakLog loading_breaks = breaks_until(breaks, r.loading_phase_end);
     f.break_spread = break_spread(loading_breaks.strain, x_c);
     f.crack = crack_features(loading_breaks, x_c);
     if (r.Gamma) f.gamma = r.Gamma->value;

@@ -78,6 +78,26 @@ std::optional<double> break_spread(std::span<const double> break_strains, double
   return (at(0.9) - at(0.1)) / std::abs(x_c);
 }
 
+BreakLog breaks_until(const BreakLog& breaks, double strain) {
+  BreakLog kept;
+  const bool heights = breaks.height.size() == breaks.strain.size();
+  for (std::size_t i = 0; i < breaks.strain.size(); ++i) {
+    if (!(breaks.strain[i] <= strain)) continue;
+    kept.strain.push_back(breaks.strain[i]);
+    if (heights) kept.height.push_back(breaks.height[i]);
+  }
+  return kept;
+}
+
+double deepest_dip(std::span<const double> values) {
+  double running_max = -INFINITY, dip = 0.0;
+  for (double v : values) {
+    running_max = std::max(running_max, v);
+    dip = std::max(dip, running_max - v);
+  }
+  return dip;
+}
+
 std::optional<CrackFeatures> crack_features(const BreakLog& breaks, double x_c) {
   if (breaks.height.size() != breaks.strain.size()) return std::nullopt;
   constexpr int bands = 20;

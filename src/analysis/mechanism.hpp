@@ -59,6 +59,12 @@ MechanismClass classify(const MechanismFeatures& features, const MechanismRules&
 // (q90 − q10) / x_c of the strains at which bonds broke; none for fewer than 10 breaks.
 std::optional<double> break_spread(std::span<const double> break_strains, double x_c);
 
+// The breaks at strains <= `strain` (with their heights, when known).
+BreakLog breaks_until(const BreakLog& breaks, double strain);
+
+// How far a rising curve falls back below its running maximum at most (0 for a monotone one).
+double deepest_dip(std::span<const double> values);
+
 // The crack of the collapse: the breaks at strains >= x_c, binned by height into 20 bands; none
 // without heights or with fewer than 10 such breaks.
 std::optional<CrackFeatures> crack_features(const BreakLog& breaks, double x_c);

@@ -311,13 +311,31 @@ std::vector<double> log_spaced(const LogRange& range) {
 
 namespace {
 
-void check_dt(const Plan& plan, const Sample& sample, double dt, const std::filesystem::path& file) {
-  const loading::RunConfig first = point_config(plan, plan.points.front(), 1);
-  const double limit_at_first = dem::System(sample, first.dem_params(sample.density)).critical_dt();
+// What the per-point rules need of the sample: its critical dt at one stiffness (every spring of
+// the sample is a multiple of k_n, so the limit scales as 1/sqrt(k_n)) and the plate separation.
+struct StepScale {
+  double k_n = 0.0;          // N/mm, where critical_dt was measured
+  double critical_dt = 0.0;  // s
+  double plate_separation = 0.0;  // mm
+};
+
+StepScale step_scale(const loading::RunConfig& base, const Sample& sample) {
+  const dem::System system(sample, base.dem_params(sample.density));
+  return {base.bond_stiffness, system.critical_dt(), system.initial_plate_separation()};
+}
+
+// Steps the plate needs at full speed to reach `strain_percent` at stiffness k_n.
+double steps_to_strain(const StepScale& scale, const loading::RunConfig& base, const ScanConfig& config,
+                       double k_n, double strain_percent) {
+  const double dt = config.dt ? *config.dt : base.dt_safety * scale.critical_dt * std::sqrt(scale.k_n / k_n);
+  return strain_percent / 100.0 * scale.plate_separation / (base.speed * dt);
+}
+
+void check_dt(const Plan& plan, const StepScale& scale, double dt, const std::filesystem::path& file) {
   std::vector<std::string> too_large;
   double smallest = INFINITY;
   for (const auto& p : plan.points) {
-    const double limit = limit_at_first * std::sqrt(first.bond_stiffness / p.k_n);
+    const double limit = scale.critical_dt * std::sqrt(scale.k_n / p.k_n);
     smallest = std::min(smallest, limit);
     if (dt > limit) too_large.push_back(fmt::format("{} (limit {:.3g} s)", p.name, limit));
   }
@@ -344,34 +362,11 @@ double mean_rest_length(const Sample& sample) {
 
 std::string point_name(double k_n, double b_d) { return fmt::format("kn_{}_bd_{}", k_n, b_d); }
 
-namespace {
-
-// What the per-point rules need of the sample: its critical dt at one stiffness (every spring of
-// the sample is a multiple of k_n, so the limit scales as 1/sqrt(k_n)) and the plate separation.
-struct StepScale {
-  double k_n = 0.0;          // N/mm, where critical_dt was measured
-  double critical_dt = 0.0;  // s
-  double plate_separation = 0.0;  // mm
-};
-
-StepScale step_scale(const loading::RunConfig& base, const Sample& sample) {
-  const dem::System system(sample, base.dem_params(sample.density));
-  return {base.bond_stiffness, system.critical_dt(), system.initial_plate_separation()};
-}
-
-// Steps the plate needs at full speed to reach `strain_percent` at stiffness k_n.
-double steps_to_strain(const StepScale& scale, const loading::RunConfig& base, const ScanConfig& config,
-                       double k_n, double strain_percent) {
-  const double dt = config.dt ? *config.dt : base.dt_safety * scale.critical_dt * std::sqrt(scale.k_n / k_n);
-  return strain_percent / 100.0 * scale.plate_separation / (base.speed * dt);
-}
-
-}  // namespace
 
 Plan make_plan(const ScanConfig& config, const Sample& sample) {
   const loading::RunConfig base = base_config(config);
   const double rest_length = mean_rest_length(sample);
-  const bool needs_steps = config.ramp == "strain" || config.interval == "scaled";
+  const bool needs_steps = config.ramp == "strain" || config.interval == "scaled" || config.dt.has_value();
   const StepScale scale = needs_steps ? step_scale(base, sample) : StepScale{};
   Plan plan;
   plan.folder = config.output;
@@ -438,7 +433,7 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
   // Bad input fails before anything runs: every point's config, and a given dt against each point's
   // stability limit, which scales as 1/sqrt(k_n) (every spring of the sample is a multiple of k_n).
   for (const auto& p : plan.points) (void)point_config(plan, p, 1);
-  if (config.dt && !base.allow_unstable_dt) check_dt(plan, sample, *config.dt, config.file);
+  if (config.dt && !base.allow_unstable_dt) check_dt(plan, scale, *config.dt, config.file);
   return plan;
 }
 

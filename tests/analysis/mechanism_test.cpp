@@ -156,3 +156,21 @@ TEST(CrackFeatures, DiffuseBreakingHasNoDominantPlane) {
 
 }  // namespace
 }  // namespace rupture::analysis
+
+namespace rupture::analysis {
+namespace {
+
+TEST(MechanismHelpers, DeepestDipAndBreaksUntil) {
+  const std::vector<double> rising{0.0, 1.0, 2.0, 3.0};
+  EXPECT_EQ(deepest_dip(rising), 0.0);
+  const std::vector<double> wavy{0.0, 2.0, 1.5, 3.0, 2.0, 4.0};
+  EXPECT_DOUBLE_EQ(deepest_dip(wavy), 1.0);
+  const BreakLog log{{0.1, 0.5, 0.9}, {0.2, 0.4, 0.6}};
+  const auto kept = breaks_until(log, 0.5);
+  EXPECT_EQ(kept.strain, (std::vector<double>{0.1, 0.5}));
+  EXPECT_EQ(kept.height, (std::vector<double>{0.2, 0.4}));
+  EXPECT_TRUE(breaks_until(BreakLog{{0.1, 0.9}, {}}, 0.5).height.empty());  // heights unknown stay unknown
+}
+
+}  // namespace
+}  // namespace rupture::analysis
