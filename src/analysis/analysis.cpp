@@ -86,6 +86,26 @@ std::optional<double> alpha_from_ratio(double ratio) {
   return 0.5 * (root.first + root.second);
 }
 
+}  // namespace
+
+const FbmBand& power_law_band() {
+  static const FbmBand band = [] {
+    FbmBand b{1e300, -1e300, 1e300, -1e300};
+    for (int k = 0; k <= 500; ++k) {
+      const double alpha = 5.0 * k / 500.0;
+      const double g = fbm::power_law::gamma(alpha), r = fbm::power_law::energy_ratio(alpha);
+      b.gamma_low = std::min(b.gamma_low, g);
+      b.gamma_high = std::max(b.gamma_high, g);
+      b.energy_ratio_low = std::min(b.energy_ratio_low, r);
+      b.energy_ratio_high = std::max(b.energy_ratio_high, r);
+    }
+    return b;
+  }();
+  return band;
+}
+
+namespace {
+
 AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p, const std::optional<Measured>& gamma,
                              const std::optional<Measured>& energy_ratio) {
   AlphaEstimate a;
@@ -93,16 +113,11 @@ AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p, c
   // Larger δ_x/x_p means smaller α (the ratio decreases with α).
   a.alpha_low = alpha_from_ratio(1.0 + delay.ci68_high / x_p.value);
   a.alpha_high = alpha_from_ratio(1.0 + delay.ci68_low / x_p.value);
-  a.gamma_band_low = a.energy_ratio_band_low = 1e300;
-  a.gamma_band_high = a.energy_ratio_band_high = -1e300;
-  for (int k = 0; k <= 500; ++k) {
-    const double alpha = 5.0 * k / 500.0;
-    const double g = fbm::power_law::gamma(alpha), r = fbm::power_law::energy_ratio(alpha);
-    a.gamma_band_low = std::min(a.gamma_band_low, g);
-    a.gamma_band_high = std::max(a.gamma_band_high, g);
-    a.energy_ratio_band_low = std::min(a.energy_ratio_band_low, r);
-    a.energy_ratio_band_high = std::max(a.energy_ratio_band_high, r);
-  }
+  const FbmBand& band = power_law_band();
+  a.gamma_band_low = band.gamma_low;
+  a.gamma_band_high = band.gamma_high;
+  a.energy_ratio_band_low = band.energy_ratio_low;
+  a.energy_ratio_band_high = band.energy_ratio_high;
   // "In the band" allows the measurement's own 2-sigma uncertainty.
   if (gamma) {
     a.gamma_in_band = gamma->value + 2.0 * gamma->error >= a.gamma_band_low && gamma->value - 2.0 * gamma->error <= a.gamma_band_high;

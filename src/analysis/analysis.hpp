@@ -93,6 +93,14 @@ struct Measured {
   std::string unit;
 };
 
+// Γ and A_r of the FBM power law p(x) = (1+α) x^α over 0 <= α <= 5: the band of the paper's
+// figures 16 and 17, against which a run (alpha_estimate) or a scan (scan/claims) is compared.
+struct FbmBand {
+  double gamma_low = 0.0, gamma_high = 0.0;
+  double energy_ratio_low = 0.0, energy_ratio_high = 0.0;
+};
+const FbmBand& power_law_band();
+
 struct AlphaEstimate {
   std::optional<double> alpha, alpha_low, alpha_high;  // from δ_x/x_p and its 68 % interval (eq. 18)
   double gamma_band_low = 0.0, gamma_band_high = 0.0;  // Γ(α) over 0 <= α <= 5

@@ -1,6 +1,7 @@
 // cli/scan_command: `rupture scan SCAN.toml` — a parameter scan over (k_n, b_d): every point run and
 // analysed in its own folder, in parallel on this machine or across MPI ranks, resumable; plus one
-// point for a job array (--task-index), the aggregate (--collect) and the ledger (--status DIR).
+// point for a job array (--task-index), the aggregate (--collect), the ledger (--status DIR) and the
+// paper's claims checked against finished scans (--claims DIR...).
 // Owns option parsing and terminal text; the scan itself is src/scan.
 #include <fmt/format.h>
 
@@ -8,10 +9,12 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "loading/run.hpp"
+#include "scan/claims.hpp"
 #include "scan/farm.hpp"
 #include "scan/ledger.hpp"
 #include "scan/scan.hpp"
@@ -24,6 +27,7 @@ struct ScanOptions {
   std::string target;  // SCAN.toml, or a scan folder for --collect
   std::string output;
   std::string status_folder;
+  std::vector<std::string> claims_folders;
   int jobs = 0, threads = 0;
   long long task_index = -1;
   bool collect = false, dry_run = false, reanalyze = false;
@@ -62,6 +66,13 @@ void print_plan(const scan::Plan& plan) {
 }
 
 void run(const ScanOptions& o) {
+  if (!o.claims_folders.empty()) {
+    for (const auto& folder : o.claims_folders)
+      fmt::print("{}", scan::claims_markdown(scan::check_claims(scan::read_results(std::filesystem::path(folder) /
+                                                                                    "results.csv")),
+                                             folder));
+    return;
+  }
   if (!o.status_folder.empty()) {
     fmt::print("{}", scan::status_report(scan::read_plan(o.status_folder)));
     return;
@@ -135,6 +146,8 @@ void add_scan_command(CLI::App& app, int& /*exit_code*/) {
                 "Analyse every finished point of a scan folder again (the runs are kept), then rewrite results.csv");
   cmd->add_option("--status", o->status_folder,
                   "Show every point of the scan in this folder: done, failed, running, pending");
+  cmd->add_option("--claims", o->claims_folders,
+                  "Print the paper's claims checked against each scan folder's results.csv (markdown)");
   cmd->add_flag("--dry-run", o->dry_run, "List the points with their ramp and stop strain, run nothing");
   cmd->callback([o] { run(*o); });
 }

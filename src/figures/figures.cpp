@@ -328,9 +328,10 @@ std::vector<Figure> run_figures(const io::CsvTable& curves, const fs::path& inpu
   const fs::path run_folder = curves.source.empty() ? fs::path() : fs::path(curves.source).parent_path();
   std::vector<Figure> figures;
   figures.push_back(run_figure(curves, input, run_folder / "analysis.json"));
+  std::optional<io::CsvTable> breaks;
   if (fs::exists(run_folder / "breaks.csv")) {
-    if (auto figure = breaks_figure(io::read_csv(run_folder / "breaks.csv"), curves, input))
-      figures.push_back(std::move(*figure));
+    breaks = io::read_csv(run_folder / "breaks.csv");
+    if (auto figure = breaks_figure(*breaks, curves, input)) figures.push_back(std::move(*figure));
   }
   const auto all = list_snapshots(run_folder, curves);
   if (all.empty() && !options.snapshot_strains.empty()) {
@@ -341,7 +342,7 @@ std::vector<Figure> run_figures(const io::CsvTable& curves, const fs::path& inpu
   if (!chosen.empty()) {
     const std::size_t strain_column = curves.require("strain");
     figures.push_back(snapshots_figure(chosen, io::column_unit(curves.header[strain_column]),
-                                       provenance(input, {curves.source})));
+                                       provenance(input, {curves.source}), breaks ? &*breaks : nullptr));
   }
   return figures;
 }

@@ -28,40 +28,7 @@ struct ClassStyle {
 // with the other rejected points.
 constexpr ClassStyle class_styles[] = {{"brittle", "#1f77b4"}, {"hyper-elastic", "#d62728"}, {"semi-ductile", "#2ca02c"}};
 
-// One results.csv row, the fields the figures read.
-struct Point {
-  double k_n = 0.0, b_d = 0.0;
-  std::string status, mechanism, why;
-  bool accepted = false;
-  std::optional<double> x_c, x_c_err, delta_x, delta_lo68, delta_hi68, A_r, A_r_err, gamma;
-
-  bool analysed() const { return status == scan::status::ok && accepted && x_c && *x_c > 0.0; }
-};
-
-std::vector<Point> read_points(const scan::ResultsTable& table) {
-  std::vector<Point> points;
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    Point p;
-    const auto k_n = table.number(r, "k_n"), b_d = table.number(r, "b_d");
-    if (!k_n || !b_d) continue;
-    p.k_n = *k_n;
-    p.b_d = *b_d;
-    p.status = table.text(r, "status");
-    p.mechanism = table.text(r, "class");
-    p.why = table.text(r, "why");
-    p.accepted = table.number(r, "accepted").value_or(0.0) == 1.0;
-    p.x_c = table.number(r, "x_c");
-    p.x_c_err = table.number(r, "x_c_err");
-    p.delta_x = table.number(r, "delta_x");
-    p.delta_lo68 = table.number(r, "delta_x_lo68");
-    p.delta_hi68 = table.number(r, "delta_x_hi68");
-    p.A_r = table.number(r, "A_r");
-    p.A_r_err = table.number(r, "A_r_err");
-    p.gamma = table.number(r, "Gamma");
-    points.push_back(std::move(p));
-  }
-  return points;
-}
+using Point = scan::PointOutcome;
 
 // A log-axis range around [low, high] with a margin of `factor` on each side.
 std::string log_range(double low, double high, double factor = 2.0) {
@@ -113,14 +80,12 @@ std::optional<Figure> mechanism_map(const std::vector<Point>& points) {
               }),
               {.title = style.name, .style = Style::points, .color = style.color, .point_size = 2.0});
   }
-  const auto rejected = [](const Point& p) { return p.status == scan::status::ok && !p.accepted; };
-  const auto ductile_like = [](const Point& p) { return p.why.rfind("ductile-like", 0) == 0; };
   add_group(figure, panel, "rejected as ductile-like (x_c not identifiable)", header,
-            columns_where([&](const Point& p) { return rejected(p) && ductile_like(p); }),
+            columns_where([&](const Point& p) { return p.rejected() && p.ductile_like(); }),
             {.title = "rejected: ductile-like", .style = Style::points, .color = "#ff7f0e", .point_type = 2,
              .point_size = 2.0});
   add_group(figure, panel, "rejected for another reason (see results.csv why)", header,
-            columns_where([&](const Point& p) { return rejected(p) && !ductile_like(p); }),
+            columns_where([&](const Point& p) { return p.rejected() && !p.ductile_like(); }),
             {.title = "rejected: peaks not resolved", .style = Style::points, .color = "#555555", .point_type = 2,
              .point_size = 2.0});
   add_group(figure, panel, "points not analysed (not separated, unstable, failed or unfinished)", header,
@@ -270,7 +235,7 @@ std::vector<Figure> scan_figures(const fs::path& scan_folder, const std::vector<
         scan_folder.string(), "no results.csv in this scan folder yet",
         "wait until `rupture scan` has finished a point (it rewrites results.csv after each one)");
   }
-  const auto points = read_points(scan::read_results(file));
+  const auto points = scan::read_outcomes(scan::read_results(file));
   std::vector<Figure> figures;
   for (auto figure : {mechanism_map(points), delay_figure(points), energy_ratio_figure(points)}) {
     if (!figure) continue;

@@ -99,16 +99,25 @@ SnapshotBonds read_snapshot_bonds(const fs::path& vtp) {
 
 std::vector<SnapshotFile> list_snapshots(const fs::path& run_folder, const io::CsvTable& curves) {
   std::vector<SnapshotFile> found;
-  const fs::path folder = run_folder / "snapshots";
-  if (!fs::is_directory(folder)) return found;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("step_", 0) != 0 || entry.path().extension() != ".vtp") continue;
+  const fs::path collection = run_folder / "snapshots.pvd";
+  if (!fs::is_regular_file(collection)) return found;
+  // The collection names each snapshot as file="snapshots/step_N.vtp" (io/vtk write_pvd).
+  const std::string text = io::read_text_file(collection);
+  constexpr std::string_view attribute = "file=\"";
+  for (auto at = text.find(attribute); at != std::string::npos; at = text.find(attribute, at)) {
+    at += attribute.size();
+    const auto end = text.find('"', at);
+    if (end == std::string::npos) break;
+    const fs::path file = run_folder / text.substr(at, end - at);
+    const std::string stem = file.stem().string();
+    if (stem.rfind("step_", 0) != 0 || file.extension() != ".vtp") continue;
     std::uint64_t step = 0;
-    const std::string digits = entry.path().stem().string().substr(5);
-    const auto [next, error] = std::from_chars(digits.data(), digits.data() + digits.size(), step);
-    if (error != std::errc() || next != digits.data() + digits.size()) continue;
-    found.push_back({entry.path(), step, 0.0});
+    const auto [next, error] = std::from_chars(stem.data() + 5, stem.data() + stem.size(), step);
+    if (error != std::errc() || next != stem.data() + stem.size()) continue;
+    if (!fs::is_regular_file(file))
+      throw InputError(collection.string(), fmt::format("lists {}, which is missing", file.string()),
+                       "rerun the run, or remove snapshots.pvd to plot without snapshots");
+    found.push_back({file, step, 0.0});
   }
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.step < b.step; });
   // Snapshots and curve rows need not share steps: interpolate the strain linearly in step.
@@ -146,7 +155,7 @@ std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all
 }
 
 Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::string& strain_unit,
-                        std::vector<std::string> provenance) {
+                        std::vector<std::string> provenance, const io::CsvTable* breaks) {
   Figure figure;
   figure.name = "snapshots";
   std::vector<double> all_extensions;
@@ -180,6 +189,31 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
     panel.cblabel = "bond extension (r - r_0)/r_0 [%]";
     panel.series = {{.block = figure.blocks.size(), .style = Style::segments, .extra_columns = {2, 3, 4}}};
     figure.blocks.push_back(std::move(block));
+    if (breaks != nullptr) {
+      // The bonds broken up to this snapshot, where they broke: the crack, which the intact bonds
+      // through the sample's depth would otherwise hide.
+      DataBlock broken;
+      broken.title = fmt::format("bonds broken up to step {}", snapshot.step);
+      broken.header = {"x[mm]", "y[mm]"};
+      broken.columns.resize(2);
+      const auto& step = breaks->column("step");
+      const auto& x = breaks->column("x");
+      const auto& y = breaks->column("y");
+      for (std::size_t r = 0; r < step.size() && step[r] <= double(snapshot.step); ++r) {
+        broken.columns[0].push_back(x[r]);
+        broken.columns[1].push_back(y[r]);
+      }
+      panel.title += fmt::format(", {} broken", broken.columns[0].size());
+      if (!broken.columns[0].empty()) {
+        panel.series.push_back({.block = figure.blocks.size(),
+                                .title = "broken bond",
+                                .style = Style::points,
+                                .color = "#000000",
+                                .point_type = 7,
+                                .point_size = 0.45});
+        figure.blocks.push_back(std::move(broken));
+      }
+    }
     figure.panels.push_back(std::move(panel));
   }
   // One colour scale for every panel, symmetric so an unstretched bond is the middle colour.
@@ -198,8 +232,10 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
   figure.provenance = std::move(provenance);
   figure.caption = fmt::format(
       "Intact bonds at {} strains, coloured by their extension (r - r0)/r0 in % on one scale for all panels "
-      "(ends of the scale: the {:.1f} % quantile of |extension|); broken bonds are gone.",
-      chosen.size(), 100.0 * colour_quantile);
+      "(ends of the scale: the {:.1f} % quantile of |extension|){}.",
+      chosen.size(), 100.0 * colour_quantile,
+      breaks != nullptr ? "; black dots: the bonds broken so far, where they broke (from breaks.csv), which trace the crack"
+                        : "; broken bonds are gone");
   return figure;
 }
 

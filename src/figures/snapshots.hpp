@@ -30,15 +30,18 @@ struct SnapshotFile {
   double strain = 0.0;
 };
 
-// The snapshots/step_N.vtp files of a run folder in step order; empty if there are none.
+// The snapshots/step_N.vtp files that the run folder's snapshots.pvd lists, in step order; empty if
+// there is no snapshots.pvd. Files in snapshots/ that it does not list (left by something else) are
+// never drawn as this run's.
 std::vector<SnapshotFile> list_snapshots(const std::filesystem::path& run_folder, const io::CsvTable& curves);
 
 // For each wanted strain the nearest snapshot, without repeats, in strain order.
 std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all,
                                             const std::vector<double>& strains);
 
-// Stacked panels, one per snapshot, bonds coloured by relative extension [%] on one shared scale.
+// Stacked panels, one per snapshot, bonds coloured by relative extension [%] on one shared scale; with
+// `breaks` (the run's breaks.csv) the bonds broken up to each snapshot as dots where they broke.
 Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::string& strain_unit,
-                        std::vector<std::string> provenance);
+                        std::vector<std::string> provenance, const io::CsvTable* breaks = nullptr);
 
 }  // namespace rupture::figures

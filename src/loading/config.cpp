@@ -464,6 +464,12 @@ std::string config_reference() {
   return out;
 }
 
+std::string config_key_unit(const std::string& path) {
+  for (const auto& key : schema())
+    if (key.path() == path) return key.unit;
+  return {};
+}
+
 nlohmann::json to_json(const RunConfig& config) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& key : schema()) out[key.section][key.name] = key.write(config);

@@ -87,6 +87,10 @@ RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem
 // Every key with unit, default and meaning, as a commented TOML document (for --help-config).
 std::string config_reference();
 
+// The unit of a key given as "section.name" ("1" for a pure number, "" for text and flags or an
+// unknown key), as the schema states it: for tables that print a resolved config.
+std::string config_key_unit(const std::string& path);
+
 // The resolved configuration (every key, defaults filled in) as JSON, by section.
 nlohmann::json to_json(const RunConfig& config);
 

@@ -329,7 +329,7 @@ struct ResumePoint {
 };
 
 RunSummary execute(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                   const std::string& command, Existing existing, ResumePoint* resume) {
+                   const std::string& command, Existing existing, bool echo_monitor, ResumePoint* resume) {
   const auto wall_start = std::chrono::steady_clock::now();
   omp_set_num_threads(int(config.threads));
   const dem::Params params = config.dem_params(sample.density);
@@ -421,7 +421,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     ++loop.curves_rows;
     loop.last_recorded = system.steps_done();
     if (config.monitor) {
-      if (const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic)) {
+      const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic);
+      if (warning && echo_monitor) {
         fmt::print(
             "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the "
             "force "
@@ -667,8 +668,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
 }  // namespace
 
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command, Existing existing) {
-  return execute(config, sample, folder, command, existing, nullptr);
+                          const std::string& command, Existing existing, bool echo_monitor) {
+  return execute(config, sample, folder, command, existing, echo_monitor, nullptr);
 }
 
 RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command) {
@@ -708,7 +709,7 @@ RunSummary resume_simulation(const std::filesystem::path& folder, const std::str
                "content: an edit to them before the resume would go unnoticed\n",
                source, c.format);
   ResumePoint point{loaded, command, lock};
-  return execute(config, sample, folder, c.command, Existing::refuse, &point);
+  return execute(config, sample, folder, c.command, Existing::refuse, true, &point);
 }
 
 }  // namespace rupture::loading

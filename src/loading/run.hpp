@@ -70,8 +70,11 @@ enum class Existing { refuse, overwrite };
 // An unstable run keeps what it wrote, marks run.json failed and throws RunError naming the step,
 // the particle, the likely cause and a dt; a failed write throws RunError naming the file and the
 // last intact checkpoint. A finished or unstable run removes its checkpoints.
+// The on-line monitor's warning is printed on stdout as it comes unless `echo_monitor` is false (a
+// scan runs points side by side and reports each in a line of its own); run.json records it either way.
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command, Existing existing = Existing::refuse);
+                          const std::string& command, Existing existing = Existing::refuse,
+                          bool echo_monitor = true);
 
 // Continues the run in `folder` from its newest readable checkpoint (warning on stderr about each
 // damaged newer one): the config and command stored there, the output files cut back to the

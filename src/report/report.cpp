@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -13,6 +15,8 @@
 #include "io/file_lock.hpp"
 #include "io/markup.hpp"
 #include "rupture/version.hpp"
+#include "loading/config.hpp"
+#include "scan/claims.hpp"
 #include "scan/results.hpp"
 
 namespace rupture::report {
@@ -51,7 +55,8 @@ table{border-collapse:collapse;margin:0.5em 0 1em}th,td{border:1px solid #ccc;pa
 th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums}
 figure{margin:1em 0}figure img{max-width:100%;height:auto;border:1px solid #ddd}figcaption{font-size:0.92em;color:#444}
 .summary{font-size:1.1em;background:#f6f6ee;border-left:4px solid #b08d00;padding:0.6em 1em}
-.scroll{overflow-x:auto}code{background:#f3f3f3;padding:0 0.2em}
+.scroll{overflow-x:auto}code{background:#f3f3f3;padding:0 0.2em}td{overflow-wrap:anywhere}
+.row{display:flex;flex-wrap:wrap;gap:1em}.row figure{flex:1 1 420px;margin:0}
 )";
 
 std::string number_text(double value) {
@@ -84,16 +89,45 @@ std::vector<std::string> measured_row(const std::string& name, const std::string
           std::isfinite(error) ? "± " + number_text(error) : "", io::escape_markup(m.value("unit", ""))};
 }
 
-// Nested JSON flattened to "a.b.c" keys with their values as text, in key order.
-void flatten(const json& value, const std::string& prefix, std::vector<std::vector<std::string>>& rows) {
+// Nested JSON flattened to "a.b.c" keys and their values as text, in key order; arrays of numbers as
+// one short list (4 digits), so a histogram fits the page.
+struct FlatEntry {
+  std::string key, value;
+};
+void flatten(const json& value, const std::string& prefix, std::vector<FlatEntry>& entries) {
   if (value.is_object() && !value.empty()) {
     for (const auto& [key, child] : value.items())
-      flatten(child, prefix.empty() ? key : prefix + "." + key, rows);
+      flatten(child, prefix.empty() ? key : prefix + "." + key, entries);
     return;
   }
   std::string text = value.is_string() ? value.get<std::string>() : value.dump();
   if (value.is_number_float()) text = fmt::format("{:.6g}", value.get<double>());
-  rows.push_back({"<code>" + io::escape_markup(prefix) + "</code>", io::escape_markup(text)});
+  if (value.is_array() && std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); })) {
+    text.clear();
+    for (const auto& v : value) text += (text.empty() ? "" : ", ") + number_text(v.get<double>());
+    text = "[" + text + "]";
+  }
+  entries.push_back({prefix, text});
+}
+
+// A key/value table of nested JSON; with `unit_of` (flattened key -> unit) a third column, the unit.
+std::string key_value_table(const json& value,
+                            const std::function<std::string(const std::string&)>& unit_of = nullptr) {
+  std::vector<FlatEntry> entries;
+  flatten(value, "", entries);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& e : entries) {
+    rows.push_back({"<code>" + io::escape_markup(e.key) + "</code>", io::escape_markup(e.value)});
+    if (unit_of) rows.back().push_back(io::escape_markup(unit_of(e.key)));
+  }
+  if (unit_of) return table({"key", "value", "unit"}, rows);
+  return table({"key", "value"}, rows);
+}
+
+// The folder's own name, also when it is given as "." or "run/".
+std::string folder_name(const fs::path& folder) {
+  std::error_code ignored;
+  return fs::weakly_canonical(fs::absolute(folder), ignored).filename().string();
 }
 
 json read_json(const fs::path& file) {
@@ -105,18 +139,24 @@ json read_json(const fs::path& file) {
   }
 }
 
-std::string figures_section(const std::vector<figures::Drawn>& drawn, std::size_t& count) {
-  std::string html = "<h2>Figures</h2>\n";
+// The figures as <figure> elements with their captions, under `heading`; file names are given
+// relative to the report's folder. `row` sets them side by side (two on a wide screen).
+std::string figures_section(const std::vector<figures::Drawn>& drawn, const fs::path& report_folder,
+                            std::size_t& count, const std::string& heading = "Figures", bool row = false) {
+  std::string html = "<h2>" + heading + "</h2>\n";
+  if (row) html += "<div class=\"row\">\n";
   for (const auto& figure : drawn) {
     const fs::path png = figure.png();
     if (png.empty()) continue;
+    const std::string stem = (png.parent_path().lexically_relative(report_folder) / figure.name).generic_string();
     html += fmt::format(
         "<figure><img alt=\"{0}\" src=\"data:image/png;base64,{1}\">\n<figcaption><strong>{0}</strong>: {2} "
-        "(data and gnuplot script: <code>figures/{0}.dat</code>, "
-        "<code>figures/{0}.gp</code>)</figcaption></figure>\n",
-        io::escape_markup(figure.name), base64(io::read_file(png)), io::escape_markup(figure.caption));
+        "(data and gnuplot script: <code>{3}.dat</code>, <code>{3}.gp</code>)</figcaption></figure>\n",
+        io::escape_markup(figure.name), base64(io::read_file(png)), io::escape_markup(figure.caption),
+        io::escape_markup(stem));
     ++count;
   }
+  if (row) html += "</div>\n";
   return html;
 }
 
@@ -284,72 +324,188 @@ std::string run_section(const json& run) {
                      io::escape_markup(run.value("command", std::string("?"))) + "</code></p>\n";
   html += table({"fact", "value", "unit"}, rows, {false, true, false});
   if (run["sample"].is_object()) {
-    std::vector<std::vector<std::string>> sample_rows;
-    flatten(run["sample"], "", sample_rows);
-    html += "<h3>Sample</h3>\n" + table({"key", "value"}, sample_rows);
+    json sample = run["sample"];
+    const json units = sample.value("units", json::object());
+    sample.erase("units");
+    // run.json names the unit of each measured quantity under sample.units; the rest are counts.
+    const auto unit_of = [&](const std::string& key) -> std::string {
+      const std::string top = key.substr(0, key.find('.'));
+      if (key == "radius_histogram.bin_edges") return units.value("radius", "");
+      return units.contains(top) && units[top].is_string() ? units[top].get<std::string>() : "1";
+    };
+    html += "<h3>Sample</h3>\n" + key_value_table(sample, unit_of);
   }
   if (run["config"].is_object()) {
-    std::vector<std::vector<std::string>> config_rows;
-    flatten(run["config"], "", config_rows);
-    html +=
-        "<h2>Configuration (every key resolved; units as in <code>rupture run --help-config</code>)</h2>\n" +
-        table({"key", "value"}, config_rows);
+    html += "<h2>Configuration</h2>\n<p>Every key resolved, as the run used it (meanings: <code>rupture run "
+            "--help-config</code>).</p>\n" +
+            key_value_table(run["config"], loading::config_key_unit);
   }
   return html;
 }
 
+// What the on-line monitor said during the run (run.json's "monitor"): when it warned, whether that
+// was before the force maximum, and whether its prediction of x_c held.
+std::string monitor_section(const json& run) {
+  if (run.is_null()) return {};
+  std::string html = "<h2>On-line monitor</h2>\n";
+  const auto& monitor = run["monitor"];
+  if (!monitor.is_object())
+    return html + "<p>Off in this run (<code>monitor.enabled = false</code>).</p>\n";
+  const auto units = monitor.value("units", json::object());
+  const std::string strain_unit = io::escape_markup(units.value("strain", ""));
+  const auto num = [](const json& v) { return v.is_number() ? number_text(v.get<double>()) : "–"; };
+  const auto& warning = monitor["warning"];
+  if (!warning.is_object()) {
+    return html + fmt::format("<p class=\"summary\">The monitor never warned ({} rows seen): it did not confirm an "
+                              "energy-rate maximum while the force still rose.</p>\n",
+                              num(monitor["samples"]));
+  }
+  const auto& lead = monitor["lead"];
+  std::string outcome = "the force maximum was not seen afterwards, so whether the warning came in time is unknown";
+  if (lead.is_number()) {
+    outcome = lead.get<double>() > 0.0
+                  ? fmt::format("<strong>before</strong> the force maximum, by {} {}", num(lead), strain_unit)
+                  : fmt::format("<strong>after</strong> the force maximum, by {} {} (too late)",
+                                number_text(-lead.get<double>()), strain_unit);
+  }
+  html += fmt::format("<p class=\"summary\">The monitor warned at strain {} {}, {}.</p>\n", num(warning["strain"]),
+                      strain_unit, outcome);
+  const auto interval = [&](const json& v) {
+    return v.is_array() && v.size() == 2 ? "[" + num(v[0]) + ", " + num(v[1]) + "]" : std::string("–");
+  };
+  const auto yes_no = [](const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "–"; };
+  std::vector<std::vector<std::string>> rows{
+      {"warning strain", num(warning["strain"]), strain_unit},
+      {"x_p as the monitor saw it", num(warning["x_p"]["value"]), strain_unit},
+      {"predicted x_c (interval)", interval(warning["x_c_predicted"]), strain_unit},
+      {"x_c observed afterwards", num(monitor["x_c_observed"]), strain_unit},
+      {"lead x_c − warning strain", num(lead), strain_unit},
+      {"x_c inside the predicted interval", yes_no(monitor["x_c_held"]), ""},
+      {"rows close enough to warn before the earliest predicted x_c", yes_no(warning["in_time"]), ""},
+      {"largest row spacing that would have warned in time", num(warning["max_row_spacing_for_a_timely_warning"]),
+       strain_unit}};
+  return html + table({"fact", "value", "unit"}, rows, {false, true, false});
+}
+
+// The paper's claims checked against a scan (scan/claims), as the report's table.
+std::string claims_section(const fs::path& scan_folder) {
+  const auto claims = scan::check_claims(scan::read_results(scan_folder / "results.csv"));
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& claim : claims.rows) rows.push_back({io::escape_markup(claim.paper), io::escape_markup(claim.here)});
+  return "<h2>The paper's claims against this scan</h2>\n<p>" + io::escape_markup(claims.counts()) +
+         " Only accepted points count below (docs/study.md explains each claim).</p>\n" +
+         table({"claim (paper, section 5)", "this scan"}, rows);
+}
+
+// results.csv as a table: the columns named in `wanted` (all when empty), numbers to 4 digits.
+std::string results_table(const scan::ResultsTable& results, const std::vector<std::string>& wanted = {}) {
+  std::vector<std::size_t> columns;
+  if (wanted.empty()) {
+    for (std::size_t c = 0; c < results.header.size(); ++c) columns.push_back(c);
+  } else {
+    for (const auto& name : wanted) columns.push_back(results.require(name));
+  }
+  std::vector<std::string> header;
+  std::vector<bool> numeric;
+  for (const std::size_t c : columns) {
+    header.push_back(io::escape_markup(results.header[c]));
+    numeric.push_back(results.header[c].find('[') != std::string::npos);  // a unit: a number column
+  }
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t r = 0; r < results.rows.size(); ++r) {
+    std::vector<std::string> cells;
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const std::string& field = results.rows[r][columns[k]];
+      cells.push_back(numeric[k] && !field.empty() ? number_text(*results.number(r, results.header[columns[k]]))
+                                                   : io::escape_markup(field));
+    }
+    rows.push_back(std::move(cells));
+  }
+  return table(header, rows, numeric);
+}
+
+json read_json_if_present(const fs::path& file) { return fs::exists(file) ? read_json(file) : json(); }
+
 std::string run_report(const fs::path& folder, const std::string& command, std::size_t& count) {
-  const json analysis = fs::exists(folder / "analysis.json") ? read_json(folder / "analysis.json") : json();
-  const json run = fs::exists(folder / "run.json") ? read_json(folder / "run.json") : json();
+  const json analysis = read_json_if_present(folder / "analysis.json");
+  const json run = read_json_if_present(folder / "run.json");
   const auto drawn = figures::plot(folder, folder / "figures", {});
   std::string body =
-      "<h1>Tension test: " + io::escape_markup(fs::absolute(folder).filename().string()) + "</h1>\n";
+      "<h1>Tension test: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
   body += provenance(folder, command) + run_summary(analysis);
-  body += figures_section(drawn, count) + analysis_section(analysis) + run_section(run);
-  return page("rupture report: " + folder.filename().string(), body);
+  body += figures_section(drawn, folder, count) + analysis_section(analysis) + monitor_section(run) + run_section(run);
+  return page("rupture report: " + folder_name(folder), body);
 }
 
 std::string scan_report(const fs::path& folder, const std::string& command, std::size_t& count) {
   const auto drawn = figures::plot(folder, folder / "figures", {});
   const auto results = scan::read_results(folder / "results.csv");
   std::string body =
-      "<h1>Parameter scan: " + io::escape_markup(fs::absolute(folder).filename().string()) + "</h1>\n";
+      "<h1>Parameter scan: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
   body += provenance(folder, command);
-  std::size_t accepted = 0;
-  for (std::size_t r = 0; r < results.rows.size(); ++r) {
-    if (results.text(r, "status") == scan::status::ok && results.number(r, "accepted").value_or(0.0) == 1.0)
-      ++accepted;
-  }
+  const auto claims = scan::check_claims(results);
   body += fmt::format(
       "<p class=\"summary\">{} points in <code>results.csv</code>, {} separated and accepted by the "
       "analysis (figures 16 and 17 show those).</p>\n",
-      results.rows.size(), accepted);
-  body += figures_section(drawn, count);
+      claims.points, claims.accepted);
+  body += figures_section(drawn, folder, count) + claims_section(folder);
   if (fs::exists(folder / "scan.json")) {
     json scan = read_json(folder / "scan.json");
     scan.erase("points");  // one entry per point: the results table below says it better
-    std::vector<std::vector<std::string>> rows;
-    flatten(scan, "", rows);
-    body += "<h2>Scan</h2>\n<p>From <code>scan.json</code>.</p>\n" + table({"key", "value"}, rows);
-  }
-  std::vector<std::string> header;
-  std::vector<bool> numeric;
-  for (const auto& field : results.header) {
-    header.push_back(io::escape_markup(field));
-    numeric.push_back(field.find('[') != std::string::npos);
-  }
-  std::vector<std::vector<std::string>> rows;
-  for (const auto& row : results.rows) {
-    std::vector<std::string> cells;
-    for (const auto& field : row) cells.push_back(io::escape_markup(field));
-    rows.push_back(std::move(cells));
+    body += "<h2>Scan</h2>\n<p>From <code>scan.json</code> (units of the rules: docs/scan.md).</p>\n" +
+            key_value_table(scan);
   }
   body +=
       "<h2>Results</h2>\n<p>Every point of <code>results.csv</code> (units in brackets; empty: not found or "
-      "not "
-      "run; _err and _sd are one standard deviation).</p>\n" +
-      table(header, rows, numeric);
-  return page("rupture scan report: " + folder.filename().string(), body);
+      "not run; _err and _sd are one standard deviation; numbers to 4 digits, the file has them all).</p>\n" +
+      results_table(results);
+  return page("rupture scan report: " + folder_name(folder), body);
+}
+
+// A study folder (`rupture study`): the run config it wrote and the run beside it.
+bool is_study_folder(const fs::path& folder) {
+  return fs::exists(folder / "study.toml") && fs::exists(folder / "run" / "curves.csv");
+}
+
+// The study on one page: the run's loading curves and, beside them, δ_x against x_c of the scan
+// (the paper's result); then the run's other figures, the scan's figures 15 and 17, the claims, and
+// the numbers. Every figure is drawn now from the files of run/ and scan/.
+std::string study_report(const fs::path& folder, const std::string& command, std::size_t& count) {
+  const fs::path run_folder = folder / "run", scan_folder = folder / "scan";
+  const json analysis = read_json_if_present(run_folder / "analysis.json");
+  const json run = read_json_if_present(run_folder / "run.json");
+  const auto run_drawn = figures::plot(run_folder, run_folder / "figures", {});
+  const bool have_scan = figures::is_scan_folder(scan_folder);
+  const auto scan_drawn = have_scan ? figures::plot(scan_folder, scan_folder / "figures", {})
+                                    : std::vector<figures::Drawn>{};
+  std::vector<figures::Drawn> first, rest;
+  for (const auto& f : run_drawn) (f.name == "loading" ? first : rest).push_back(f);
+  for (const auto& f : scan_drawn) (f.name == "delay_vs_critical" ? first : rest).push_back(f);
+
+  std::string body = "<h1>Study: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
+  body += provenance(folder, command) + run_summary(analysis);
+  if (have_scan) {
+    const auto claims = scan::check_claims(scan::read_results(scan_folder / "results.csv"));
+    body += fmt::format(
+        "<p class=\"summary\">The scan of the same tissue (<code>scan/</code>): {} points, {} accepted; "
+        "{}.</p>\n",
+        claims.points, claims.accepted, io::escape_markup(claims.rows.front().here));
+  } else {
+    body += "<p>No scan in this study (<code>--no-scan</code>): figures 15-17 need one.</p>\n";
+  }
+  body += figures_section(first, folder, count, "The run's loading curves and the scan's delay", true);
+  body += figures_section(rest, folder, count, "More figures");
+  if (have_scan) body += claims_section(scan_folder);
+  body += "<h2>The run</h2>\n" + analysis_section(analysis) + monitor_section(run);
+  if (have_scan) {
+    body += "<h2>The scan's points</h2>\n<p>From <code>scan/results.csv</code> (every column there; "
+            "<code>rupture report scan</code> shows them all).</p>\n" +
+            results_table(scan::read_results(scan_folder / "results.csv"),
+                          {"k_n", "b_d", "status", "steps", "x_c", "x_p", "delta_x", "delta_x_lo95", "delta_x_hi95",
+                           "A_r", "alpha", "class", "accepted", "why", "wall_time"});
+  }
+  body += run_section(run);
+  return page("rupture study report: " + folder_name(folder), body);
 }
 
 }  // namespace
@@ -357,13 +513,14 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
 ReportResult write_report(const fs::path& folder, const std::string& command) {
   if (!fs::is_directory(folder)) {
     throw InputError(folder.string(), "not a folder",
-                     "give a run folder (rupture run) or a scan folder (rupture scan)");
+                     "give a run folder (rupture run), a scan folder (rupture scan) or a study folder (rupture study)");
   }
   const io::FolderLock lock(folder, command);  // one writer: a run still writing it refuses the report
   ReportResult result;
   result.html = folder / "report.html";
-  const std::string html = figures::is_scan_folder(folder) ? scan_report(folder, command, result.figures)
-                                                           : run_report(folder, command, result.figures);
+  const std::string html = is_study_folder(folder)           ? study_report(folder, command, result.figures)
+                           : figures::is_scan_folder(folder) ? scan_report(folder, command, result.figures)
+                                                             : run_report(folder, command, result.figures);
   io::write_file_atomically(result.html, html);
   return result;
 }

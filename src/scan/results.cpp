@@ -188,4 +188,31 @@ ResultsTable read_results(const std::filesystem::path& path) {
   return parse_results(io::read_text_file(path), path.string());
 }
 
+std::vector<PointOutcome> read_outcomes(const ResultsTable& table) {
+  std::vector<PointOutcome> points;
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const auto k_n = table.number(r, "k_n"), b_d = table.number(r, "b_d");
+    if (!k_n || !b_d) continue;
+    PointOutcome p;
+    p.k_n = *k_n;
+    p.b_d = *b_d;
+    p.status = table.text(r, "status");
+    p.mechanism = table.text(r, "class");
+    p.why = table.text(r, "why");
+    p.accepted = table.number(r, "accepted").value_or(0.0) == 1.0;
+    p.x_c = table.number(r, "x_c");
+    p.x_c_err = table.number(r, "x_c_err");
+    p.delta_x = table.number(r, "delta_x");
+    p.delta_lo68 = table.number(r, "delta_x_lo68");
+    p.delta_hi68 = table.number(r, "delta_x_hi68");
+    p.delta_lo95 = table.number(r, "delta_x_lo95");
+    p.alpha = table.number(r, "alpha");
+    p.A_r = table.number(r, "A_r");
+    p.A_r_err = table.number(r, "A_r_err");
+    p.gamma = table.number(r, "Gamma");
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
 }  // namespace rupture::scan

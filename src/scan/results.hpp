@@ -67,4 +67,22 @@ struct ResultsTable {
 ResultsTable parse_results(std::string_view text, const std::string& source);
 ResultsTable read_results(const std::filesystem::path& path);
 
+// One row as the summaries read it (the scan figures, the claims): its parameters, outcome and the
+// analysed quantities that are there.
+struct PointOutcome {
+  double k_n = 0.0, b_d = 0.0;         // N/mm, mm
+  std::string status, mechanism, why;  // mechanism: the class column
+  bool accepted = false;
+  std::optional<double> x_c, x_c_err, delta_x, delta_lo68, delta_hi68, delta_lo95, alpha, A_r, A_r_err, gamma;
+
+  // Separated, analysed and accepted, with a positive x_c: a point of figures 16 and 17.
+  bool analysed() const { return status == scan::status::ok && accepted && x_c && *x_c > 0.0; }
+  // Separated and analysed, but rejected; ductile-like when the analysis said so first.
+  bool rejected() const { return status == scan::status::ok && !accepted; }
+  bool ductile_like() const { return why.rfind("ductile-like", 0) == 0; }
+};
+
+// Every row that has its k_n and b_d, in table order.
+std::vector<PointOutcome> read_outcomes(const ResultsTable& table);
+
 }  // namespace rupture::scan

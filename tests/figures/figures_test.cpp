@@ -210,15 +210,21 @@ TEST(Figures, FbmCurveMaximaAtClosedFormStrains) {
   expect_silent_rerun(dir / "figs", "uniform");
 }
 
+// The block example pulled to failure with a bond snapshot every 500 steps; empty if the run failed.
+fs::path block_run_with_snapshots(const TempDir& dir) {
+  const auto run = dir / "run";
+  const auto r = run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run) +
+                             " --set output.snapshot_interval=500");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return r.exit_code == 0 ? run : fs::path();
+}
+
 // Snapshots: one panel per chosen strain, each bond a segment between its two particles with its
 // extension in percent, read back from the .vtp the run wrote.
 TEST(Figures, SnapshotsDrawIntactBondsAtChosenStrains) {
   TempDir dir;
-  const auto run = dir / "run";
-  ASSERT_EQ(run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run) +
-                        " --set output.snapshot_interval=500")
-                .exit_code,
-            0);
+  const auto run = block_run_with_snapshots(dir);
+  ASSERT_FALSE(run.empty());
   const auto out = dir / "figs";
   const auto r =
       run_rupture("plot " + shell_quoted(run) + " --out " + shell_quoted(out) + " --snapshots-at 0,0.15");
@@ -248,6 +254,43 @@ TEST(Figures, SnapshotsDrawIntactBondsAtChosenStrains) {
   EXPECT_GT(largest, 0.05);
   EXPECT_EQ(size.height, static_cast<std::uint32_t>(2 * 900));  // two tall panels of the 3 x 7 mm block
   expect_silent_rerun(out, "snapshots");
+}
+
+// The crack: each panel also marks the bonds broken up to its step, where breaks.csv says they broke;
+// and only the snapshots that the run's snapshots.pvd lists are drawn, never a file left beside them.
+TEST(Figures, SnapshotsMarkTheBondsBrokenSoFarAndOnlyTheRunsOwnFiles) {
+  TempDir dir;
+  const auto run = block_run_with_snapshots(dir);
+  ASSERT_FALSE(run.empty());
+  // A snapshot that is not this run's (a later step than any it wrote): copied in, not in the .pvd.
+  fs::copy_file(run / "snapshots" / "step_0000000000.vtp", run / "snapshots" / "step_0009999999.vtp");
+  const auto out = dir / "figs";
+  const auto r = run_rupture("plot " + shell_quoted(run) + " --out " + shell_quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::CsvTable breaks = io::read_csv(run / "breaks.csv");
+  ASSERT_GT(breaks.rows(), 0u) << "the block must break for this test";
+  const auto all = blocks(out / "snapshots.dat");
+  std::size_t panels = 0, marked = 0;
+  for (std::size_t b = 0; b < all.size(); ++b) {
+    if (all[b].title.rfind("intact bonds at step ", 0) != 0) continue;
+    ++panels;
+    EXPECT_THAT(all[b].title, ::testing::Not(HasSubstr("step 9999999,")));
+    const double step = std::stod(all[b].title.substr(std::string("intact bonds at step ").size()));
+    std::size_t expected = 0;
+    for (std::size_t row = 0; row < breaks.rows(); ++row) expected += breaks.column("step")[row] <= step;
+    if (expected == 0) continue;  // nothing broken yet: no dots
+    ASSERT_LT(b + 1, all.size());
+    const Block& broken = all[b + 1];
+    EXPECT_THAT(broken.title, HasSubstr("bonds broken up to step"));
+    ASSERT_EQ(broken.rows.size(), expected);
+    for (std::size_t row = 0; row < expected; ++row) {
+      EXPECT_DOUBLE_EQ(broken.rows[row][0], breaks.column("x")[row]);
+      EXPECT_DOUBLE_EQ(broken.rows[row][1], breaks.column("y")[row]);
+    }
+    ++marked;
+  }
+  EXPECT_EQ(panels, 3u);  // near x_p, near x_c, the last: or the thirds when there is no analysis
+  EXPECT_GE(marked, 1u) << "the last snapshot comes after the breaks";
 }
 
 TEST(Figures, SnapshotsAskedForInARunWithoutThemIsBadInput) {

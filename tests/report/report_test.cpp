@@ -24,6 +24,7 @@
 #include "figures/scan_fixture.hpp"
 #include "io/atomic_file.hpp"
 #include "io/markup.hpp"
+#include "support/browser.hpp"
 #include "support/tool.hpp"
 
 namespace {
@@ -34,6 +35,9 @@ using rupture::testing::run_rupture;
 using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
+using rupture::testing::chromium;
+using rupture::testing::console_lines;
+using rupture::testing::have_chromium;
 using ::testing::HasSubstr;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
@@ -256,6 +260,24 @@ TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
   EXPECT_TRUE(has_cell(facts, "bonds.stiffness"));
   EXPECT_TRUE(has_cell(facts, "1000"));
   EXPECT_TRUE(has_cell(facts, "output.snapshot_interval"));
+  // Each config row carries the unit the schema states: key, value, unit.
+  const auto stiffness = std::find(facts.cells.begin(), facts.cells.end(), "bonds.stiffness");
+  ASSERT_GE(facts.cells.end() - stiffness, 3);
+  EXPECT_EQ(stiffness[1], "1000");
+  EXPECT_EQ(stiffness[2], "N/mm");
+  // The sample's measured sizes with the units run.json gives them.
+  const auto radius = std::find(facts.cells.begin(), facts.cells.end(), "radius.mean");
+  ASSERT_GE(facts.cells.end() - radius, 3);
+  EXPECT_EQ(radius[2], "mm");
+  // The on-line monitor's outcome as run.json records it.
+  const auto record = nlohmann::json::parse(slurp(run / "run.json"));
+  ASSERT_TRUE(record.at("monitor").is_object());
+  if (record["monitor"]["warning"].is_object()) {
+    EXPECT_THAT(facts.body_text, HasSubstr(fmt::format("The monitor warned at strain {:.4g} %",
+                                                       record["monitor"]["warning"]["strain"].get<double>())));
+  } else {
+    EXPECT_THAT(facts.body_text, HasSubstr("The monitor never warned"));
+  }
   EXPECT_THAT(html, HasSubstr("rupture report " + run.string()));
 }
 
@@ -278,6 +300,11 @@ TEST(Report, ScanReportTablesEveryPoint) {
   EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "ductile"), 0);
   EXPECT_TRUE(has_cell(facts, "still whole at max_strain"));
   EXPECT_TRUE(has_cell(facts, "k_n[N/mm]"));
+  // The paper's claims against the fixture (scan/claims), and numbers shortened to 4 digits.
+  EXPECT_TRUE(has_cell(facts, "4 of 6; A_r median 1.1 (10–90 %: 0.8–1.3; all 0.7–1.3)"));
+  EXPECT_TRUE(has_cell(facts, "2 of 8 separated runs"));
+  EXPECT_TRUE(has_cell(facts, "brittle at b_d = 0.001 mm"));
+  EXPECT_TRUE(has_cell(facts, "0.0006"));  // δ_x_sd of the second point, 0.1 x 0.006
 }
 
 TEST(Report, WhatIsNotARunOrScanFolderIsBadInput) {
@@ -368,45 +395,6 @@ Image decode_png(const std::string& bytes) {
   }
   return image;
 }
-
-struct BrowserRun {
-  int exit_code = -1;
-  std::string dom, log;
-};
-
-// Headless Chromium on a page: screenshot 1200 x 2000 into `screenshot` (if given) or the DOM after
-// the load event on stdout, console messages on stderr (--enable-logging=stderr).
-BrowserRun chromium(const fs::path& page, const fs::path& work, const std::string& mode) {
-  fs::create_directories(work / "profile");
-  const std::string command = fmt::format(
-      "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-      "--disable-background-networking --disable-component-update --disable-sync --user-data-dir={} "
-      "--enable-logging=stderr --v=0 --window-size=1200,2000 {} 'file://{}' >{} 2>{}",
-      shell_quoted(work / "profile"), mode, fs::absolute(page).string(), shell_quoted(work / "stdout"),
-      shell_quoted(work / "stderr"));
-  BrowserRun run;
-  const int status = std::system(command.c_str());
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.dom = slurp(work / "stdout");
-  run.log = slurp(work / "stderr");
-  return run;
-}
-
-// Lines of Chromium's log that come from the page: console messages and uncaught exceptions.
-std::vector<std::string> console_lines(const std::string& log) {
-  std::vector<std::string> lines;
-  std::size_t at = 0;
-  while (at < log.size()) {
-    const auto end = std::min(log.find('\n', at), log.size());
-    const std::string line = log.substr(at, end - at);
-    if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos)
-      lines.push_back(line);
-    at = end + 1;
-  }
-  return lines;
-}
-
-bool have_chromium() { return std::system("command -v chromium >/dev/null 2>&1") == 0; }
 
 // Share of pixels that differ from the page background (white) by more than a faint tint.
 double inked_fraction(const Image& image) {

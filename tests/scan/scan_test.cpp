@@ -22,6 +22,8 @@
 #include "dem/system.hpp"
 #include "sample/formats.hpp"
 #include "sample/lattice.hpp"
+#include "figures/scan_fixture.hpp"
+#include "scan/claims.hpp"
 #include "scan/farm.hpp"
 #include "scan/results.hpp"
 #include "scan_support.hpp"
@@ -273,6 +275,38 @@ TEST(ScanResults, TextAndMissingValuesRoundTrip) {
   EXPECT_THROW((void)table.number(0, "status"), InputError);
   EXPECT_THROW((void)table.require("nothing"), InputError);
   EXPECT_THROW(parse_results("a,b\n1\n", "mem"), InputError);
+}
+
+// The paper's claims against the hand-written fixture, whose every number is known: 10 points, 8
+// separated, 6 accepted (5 with δ_x > 0), 4 of them with A_r inside the FBM band 0.837-1.333.
+TEST(ScanClaims, CountAndSummariseTheAcceptedPointsOfAKnownTable) {
+  rupture::testing::TempDir dir;
+  rupture::testing::write_scan_fixture(dir.path());
+  const auto claims = scan::check_claims(scan::read_results(dir / "results.csv"));
+  using F = rupture::testing::ScanFixture;
+  EXPECT_EQ(claims.points, std::size_t(F::points));
+  EXPECT_EQ(claims.separated, 8u);
+  EXPECT_EQ(claims.accepted, std::size_t(F::brittle + F::hyper_elastic + F::semi_ductile));
+  EXPECT_EQ(claims.counts(), "10 points: 10 ran, 8 separated, 6 accepted, 2 rejected, 2 not separated or failed.");
+  ASSERT_EQ(claims.rows.size(), 9u);
+  const auto here = [&](std::size_t row) { return claims.rows[row].here; };
+  EXPECT_EQ(here(0), "5 of 6 have δ_x > 0; 0 of 6 with the 95 % lower bound > 0");
+  // log δ_x on log x_c over the five positive points: slope 0.927 (computed by hand).
+  EXPECT_EQ(here(1), "δ_x ∝ x_c^0.927 over x_c = 0.02–5 % (log–log fit, δ_x > 0)");
+  // δ_x/x_c sorted: -0.05, 0.18, 0.24, 0.25, 0.267, 0.3.
+  EXPECT_EQ(here(2), "median 0.25 (10–90 %: 0.18–0.3; all -0.05–0.3)");
+  EXPECT_EQ(here(3), "median –");  // the fixture has no α column values
+  EXPECT_EQ(claims.rows[4].paper, "A_r in the FBM band 0.84–1.33 for x_c < 10 %");
+  EXPECT_EQ(here(4), "4 of 6; A_r median 1.1 (10–90 %: 0.8–1.3; all 0.7–1.3)");
+  EXPECT_EQ(here(5), fmt::format("Γ > 5: {}; A_r > 2: 0", F::gamma_above_5));
+  EXPECT_EQ(here(6), "brittle at b_d = 0.001 mm");
+  EXPECT_EQ(here(7), "brittle: 2, hyper-elastic: 1, semi-ductile: 3; rejected as ductile-like: 1");
+  EXPECT_EQ(here(8), "2 of 8 separated runs");
+  // The same table in markdown from the command line.
+  const auto r = rupture::testing::run_rupture("scan --claims " + rupture::testing::shell_quoted(dir.path()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, scan::claims_markdown(claims, dir.path().string()));
+  EXPECT_NE(r.out.find("| δ_x > 0 in every accepted run | 5 of 6 have δ_x > 0;"), std::string::npos);
 }
 
 TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThreads) {
