@@ -34,22 +34,6 @@ std::unique_ptr<fbm::StrengthDistribution> load_distribution(const std::string& 
   return fbm::parse_distribution_spec(spec, [](const std::string& path) { return io::read_text_file(path); });
 }
 
-json optional_json(const std::optional<double>& value) { return value ? json(*value) : json(nullptr); }
-
-json characteristics_json(const fbm::Characteristics& c) {
-  return {{"x_c", c.x_c},
-          {"F_c", c.F_c},
-          {"x_m", optional_json(c.x_m)},
-          {"E_max", optional_json(c.E_max)},
-          {"x_p", c.x_p},
-          {"Erate_max", c.Erate_max},
-          {"delta_x", c.delta_x},
-          {"Gamma", optional_json(c.Gamma)},
-          {"A_r", optional_json(c.A_r)},
-          {"E_d_at_x_c", c.E_d_at_x_c},
-          {"Erate_max_at_cutoff", c.Erate_max_at_cutoff}};
-}
-
 std::string format_optional(const std::optional<double>& value) {
   return value ? fmt::format("{:.12g}", *value) : "not defined";
 }
@@ -119,7 +103,7 @@ void add_theory(CLI::App& fbm_app) {
                {"dist", dist->spec()},
                {"method", method},
                {"units", units_note}};
-      doc.update(characteristics_json(c));
+      doc.update(fbm::to_json(c));
       fmt::print("{}\n", doc.dump(2));
     } else {
       fmt::print("fiber bundle, dist {}\n{}\n{}\n{}", dist->spec(), method, units_note,
@@ -238,10 +222,10 @@ void add_simulate(CLI::App& fbm_app) {
                    {"points", o->points}}},
                  {"units", units},
                  {"curve_file", o->out.empty() ? json(nullptr) : json(o->out)}};
-    summary.update(characteristics_json(result.measured));
+    summary.update(fbm::to_json(result.measured));
     // The N -> infinity ELS values, for comparison with the measured ones.
     if (const auto* continuous = dynamic_cast<const fbm::ContinuousDistribution*>(dist.get()))
-      summary["els_theory"] = characteristics_json(fbm::ElsTheory(*continuous).characteristics());
+      summary["els_theory"] = fbm::to_json(fbm::ElsTheory(*continuous).characteristics());
     if (load) {
       std::size_t bursts = 0;
       for (const auto& [size, count] : load->burst_counts) bursts += count;

@@ -111,7 +111,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
       folder = config.output_folder;
       summary = loading::run_simulation(
           config, sample, folder, command_line("run", options),
-          options.overwrite ? loading::Existing::overwrite : loading::Existing::refuse);
+          {.existing = options.overwrite ? loading::Existing::overwrite : loading::Existing::refuse});
     }
     if (summary.signal != 0) {
       fmt::print(stderr,

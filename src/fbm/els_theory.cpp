@@ -69,6 +69,21 @@ Maximum global_maximum(const std::vector<double>& nodes, double lo, G&& g, DG&& 
 
 }  // namespace
 
+nlohmann::json to_json(const Characteristics& c) {
+  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"x_c", c.x_c},
+          {"F_c", c.F_c},
+          {"x_m", optional(c.x_m)},
+          {"E_max", optional(c.E_max)},
+          {"x_p", c.x_p},
+          {"Erate_max", c.Erate_max},
+          {"delta_x", c.delta_x},
+          {"Gamma", optional(c.Gamma)},
+          {"A_r", optional(c.A_r)},
+          {"E_d_at_x_c", c.E_d_at_x_c},
+          {"Erate_max_at_cutoff", c.Erate_max_at_cutoff}};
+}
+
 void derive_ratios(Characteristics& c) {
   c.delta_x = c.x_c - c.x_p;
   c.Gamma = c.x_m && c.delta_x != 0.0 ? std::optional<double>((*c.x_m - c.x_c) / c.delta_x) : std::nullopt;

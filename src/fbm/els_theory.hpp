@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct Characteristics {
 
 // Fills δ_x, Γ and A_r from the maxima.
 void derive_ratios(Characteristics& c);
+
+// The characteristics as `rupture fbm theory --json` and the Python module give them (null where
+// undefined).
+nlohmann::json to_json(const Characteristics& c);
 
 // The theory of one continuous distribution. Root finding and quadrature to ~1e-10 relative.
 class ElsTheory {

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -329,7 +330,7 @@ struct ResumePoint {
 };
 
 RunSummary execute(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                   const std::string& command, Existing existing, bool echo_monitor, ResumePoint* resume) {
+                   const std::string& command, const RunOptions& options, ResumePoint* resume) {
   const auto wall_start = std::chrono::steady_clock::now();
   omp_set_num_threads(int(config.threads));
   const dem::Params params = config.dem_params(sample.density);
@@ -375,7 +376,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
                        {"step", c.engine.step},
                        {"warnings", resume->loaded.warnings}});
   } else {
-    lock = claim_new_folder(folder, config, system, command, existing);
+    lock = claim_new_folder(folder, config, system, command, options.existing);
   }
 
   nlohmann::json report = {{"tool", "rupture run"},
@@ -408,6 +409,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
   summary.max_relative_energy_error = loop.max_relative_energy_error;
   const auto strain_now = [&] { return 100.0 * system.top_plate().displacement / l0; };
   std::string instability;  // what gave the instability away, naming the particle ("" while stable)
+  bool stop_requested = false;  // options.on_row said stop
   const auto record = [&] {
     const dem::Energies e = system.energies();
     const double w = system.plate_work();
@@ -422,7 +424,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     loop.last_recorded = system.steps_done();
     if (config.monitor) {
       const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic);
-      if (warning && echo_monitor) {
+      if (warning && options.echo_monitor) {
         fmt::print(
             "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the "
             "force "
@@ -436,6 +438,10 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
               warning->max_row_spacing);
       }
     }
+    if (options.on_row &&
+        !options.on_row({system.steps_done(), strain_now(), system.force_top(),
+                         std::size_t(system.bond_count() - system.intact_bonds())}))
+      stop_requested = true;
     loop.max_work = std::max(loop.max_work, std::abs(w));
     const double error = std::abs(w - total);
     if (std::isfinite(error)) {
@@ -557,6 +563,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
       }
       // Everything of this step is written: a checkpoint here resumes at the next one.
       signal = pending_interrupt();
+      if (signal == 0 && stop_requested) signal = SIGINT;
       if (signal != 0 || checkpoint_due(done)) {
         loop.load_free = load_free.state();
         checkpoint();
@@ -668,8 +675,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
 }  // namespace
 
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command, Existing existing, bool echo_monitor) {
-  return execute(config, sample, folder, command, existing, echo_monitor, nullptr);
+                          const std::string& command, const RunOptions& options) {
+  return execute(config, sample, folder, command, options, nullptr);
 }
 
 RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command) {
@@ -709,7 +716,7 @@ RunSummary resume_simulation(const std::filesystem::path& folder, const std::str
                "content: an edit to them before the resume would go unnoticed\n",
                source, c.format);
   ResumePoint point{loaded, command, lock};
-  return execute(config, sample, folder, c.command, Existing::refuse, true, &point);
+  return execute(config, sample, folder, c.command, {}, &point);
 }
 
 }  // namespace rupture::loading

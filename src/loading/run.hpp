@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -60,21 +61,38 @@ struct RunSummary {
 // before its first checkpoint): refuse, naming it, or replace its outputs.
 enum class Existing { refuse, overwrite };
 
+// Where a run stands, after each curve row.
+struct RunProgress {
+  std::uint64_t steps = 0;
+  double strain = 0.0;  // %
+  double force = 0.0;   // N, on the top plate
+  std::size_t broken_bonds = 0;
+};
+
+struct RunOptions {
+  Existing existing = Existing::refuse;
+  // The on-line monitor's warning is printed on stdout as it comes unless false (a scan runs points
+  // side by side and reports each in a line of its own); run.json records it either way.
+  bool echo_monitor = true;
+  // Called after each curve row; returning false stops the run as SIGINT would (a checkpoint, then
+  // status "interrupted"). For callers that run simulations inside another program (the Python
+  // module), where the signal handlers belong to that program.
+  std::function<bool(const RunProgress&)> on_row = nullptr;
+};
+
 // Runs to a stop rule, writing into `folder`. `command` is recorded in run.json and in the header
 // of curves.csv and breaks.csv. Before the first step it claims the folder (InputError, and the
 // folder left as it was, when it is `/`, is written by another process, holds an unfinished run,
-// an ended one unless `existing` is overwrite, or files rupture did not write, or has no room for
-// the checkpoints), and holds a lock on it to the end. Writes a checkpoint every
+// an ended one unless `options.existing` is overwrite, or files rupture did not write, or has no room
+// for the checkpoints), and holds a lock on it to the end. Writes a checkpoint every
 // checkpoint.every steps or checkpoint.minutes, and after the step in which SIGINT/SIGTERM came
-// (if install_interrupt_handlers() was called), then returns with status "interrupted".
+// (if install_interrupt_handlers() was called) or `on_row` said stop, then returns with status
+// "interrupted".
 // An unstable run keeps what it wrote, marks run.json failed and throws RunError naming the step,
 // the particle, the likely cause and a dt; a failed write throws RunError naming the file and the
 // last intact checkpoint. A finished or unstable run removes its checkpoints.
-// The on-line monitor's warning is printed on stdout as it comes unless `echo_monitor` is false (a
-// scan runs points side by side and reports each in a line of its own); run.json records it either way.
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                          const std::string& command, Existing existing = Existing::refuse,
-                          bool echo_monitor = true);
+                          const std::string& command, const RunOptions& options = {});
 
 // Continues the run in `folder` from its newest readable checkpoint (warning on stderr about each
 // damaged newer one): the config and command stored there, the output files cut back to the

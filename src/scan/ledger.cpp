@@ -173,8 +173,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
   nlohmann::json row = base_row(point);
   std::string status = status::error, why;
   try {
-    const auto summary = loading::run_simulation(config, sample, attempt, command, loading::Existing::refuse,
-                                                 /*echo_monitor=*/false);
+    const auto summary = loading::run_simulation(config, sample, attempt, command, {.echo_monitor = false});
     row["stop_reason"] = summary.stop_reason;
     row["steps"] = summary.steps;
     row["final_strain"] = summary.strain;

@@ -1,0 +1,87 @@
+"""The precursor analysis of a loading curve (`rupture analyze`): x_p (energy-rate maximum), x_c
+(force maximum), x_m, the delay delta_x = x_c - x_p with its sampling distribution, Gamma, A_r, the
+FBM comparison, acceptance and the breaking mechanism.
+"""
+from collections import namedtuple
+from pathlib import Path
+
+import numpy as np
+
+from . import _rupture
+
+Measured = namedtuple("Measured", "value error unit")
+Measured.__doc__ = "A measured number with its one-sigma uncertainty (0 when not estimated) and unit."
+
+
+class Analysis:
+    """One analysis. `document` is the whole analysis.json as a dict; the attributes below are read from
+    it. Quantities the analysis did not find are None."""
+
+    _MEASURED = ("x_p", "x_c", "x_m", "F_c", "E_max", "Erate_max", "Gamma", "A_r", "delta_x_direct")
+
+    def __init__(self, document):
+        self.document = document
+        for key in self._MEASURED:
+            m = document.get(key)
+            setattr(self, key, None if m is None else Measured(m["value"], m.get("error", 0.0), m.get("unit", "")))
+        delta = document.get("delta_x")
+        self.delta_x = None if delta is None else Measured(delta["mean"], delta["sd"], delta["unit"])
+        self.delta_x_ci95 = None if delta is None else tuple(delta["ci95"])
+        self.delta_x_ci68 = None if delta is None else tuple(delta["ci68"])
+        self.accepted = bool(document.get("accepted"))
+        self.rejection = document.get("rejection") or None
+        mechanism = document.get("mechanism") or {}
+        self.mechanism = mechanism.get("class")
+        alpha = document.get("alpha") or {}
+        self.alpha = alpha.get("from_delta_over_x_p")
+        self.units = document.get("units", {})
+
+    @property
+    def posterior(self):
+        """delta_x's sampling distribution as (delta, density) numpy arrays, in the strain unit."""
+        dist = (self.document.get("delta_x") or {}).get("sampling_distribution")
+        if dist is None:
+            return None
+        return np.asarray(dist["delta"], dtype=float), np.asarray(dist["density"], dtype=float)
+
+    def __repr__(self):
+        def show(m):
+            return "None" if m is None else f"{m.value:.4g} ± {m.error:.2g} {m.unit}"
+        return (f"Analysis(x_p={show(self.x_p)}, x_c={show(self.x_c)}, delta_x={show(self.delta_x)}, "
+                f"accepted={self.accepted}, mechanism={self.mechanism!r})")
+
+
+def _column(frame, name, fallbacks=()):
+    for wanted in (name, *fallbacks):
+        for column in frame.columns:
+            if column == wanted or column.split("[")[0] == wanted:
+                return column
+    raise _rupture.InputError(f"analyze: no column '{name}' among {list(frame.columns)}; "
+                              "name the columns strain, force and elastic_energy, or pass arrays")
+
+
+def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_method="fitted-maxima",
+            replicates=0, seed=1):
+    """Analyses a curve given as
+      - a DataFrame with columns strain, force (or force_top) and elastic_energy, units taken from
+        names like strain[%] (e.g. Run.curves, read_curves()),
+      - the path of a curves CSV (its breaks.csv beside it, if any, is read as the CLI does), or
+      - three arrays: analyze(strain, force, energy, units=("%", "N", "mJ")).
+    delay_method: "fitted-maxima" (default) or "shift-l1" (the paper's inversion, for comparison);
+    replicates: bootstrap noise replicates (0: the default 200); seed: their seed."""
+    if isinstance(data, (str, Path)):
+        return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed)))
+    if force is None and hasattr(data, "columns"):
+        frame = data
+        columns = [_column(frame, "strain"), _column(frame, "force", ("force_top",)), _column(frame, "elastic_energy")]
+        found = frame.attrs.get("units", {})
+        units = tuple(found.get(c, "1") for c in columns)
+        strain, force, energy = (frame[c].to_numpy(dtype=float) for c in columns)
+    else:
+        strain = data
+        if force is None or energy is None:
+            raise _rupture.InputError("analyze: give a DataFrame, a CSV path, or three arrays (strain, force, energy)")
+    return Analysis(_rupture.analyze_arrays(np.asarray(strain, dtype=float).tolist(),
+                                            np.asarray(force, dtype=float).tolist(),
+                                            np.asarray(energy, dtype=float).tolist(),
+                                            units[0], units[1], units[2], delay_method, int(replicates), int(seed)))

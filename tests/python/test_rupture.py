@@ -1,0 +1,211 @@
+"""Tests of the Python package (src/python): the same numbers as the command line, numpy views that
+are the sample's own memory, runs that match `rupture run` byte for byte, Ctrl-C, errors, the readers
+of run and scan folders, and the examples under examples/python."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rupture
+
+BINARY = os.environ["RUPTURE_BINARY"]
+EXAMPLES = Path(os.environ["RUPTURE_EXAMPLES_DIR"]).resolve()
+BLOCK = EXAMPLES / "block.toml"
+
+
+def cli(*args, cwd=None):
+    done = subprocess.run([BINARY, *map(str, args)], cwd=cwd, capture_output=True, text=True)
+    assert done.returncode in (0, 4), done.stderr
+    return done
+
+
+def data_rows(path):
+    """A CSV's lines without its '#' comments (which name the command that wrote it)."""
+    return [line for line in Path(path).read_text().splitlines() if not line.startswith("#")]
+
+
+# ---- fbm --------------------------------------------------------------------------------------
+
+def test_fbm_theory_of_the_uniform_law_is_exact():
+    # Uniform thresholds on [0, 1]: F = x (1 - x), E_e = x^2 (1 - x) / 2: x_p = 1/3, x_c = 1/2, x_m = 2/3.
+    t = rupture.fbm.theory("uniform")
+    assert t["x_p"] == pytest.approx(1 / 3, abs=1e-9)
+    assert t["x_c"] == pytest.approx(1 / 2, abs=1e-9)
+    assert t["x_m"] == pytest.approx(2 / 3, abs=1e-9)
+    assert t["A_r"] == pytest.approx(4 / 3, abs=1e-8)
+    from_cli = json.loads(cli("fbm", "theory", "--dist", "uniform", "--json").stdout)
+    assert all(from_cli[key] == value for key, value in t.items())  # the command line's numbers, bit for bit
+
+
+def test_fbm_curves_at_chosen_strains_follow_the_closed_form():
+    x = np.linspace(0.0, 1.0, 101)
+    c = rupture.fbm.curves("uniform", x=x)
+    np.testing.assert_allclose(c["strain"], x)
+    np.testing.assert_allclose(c["force"], x * (1 - x), atol=1e-12)
+    np.testing.assert_allclose(c["elastic_energy"], x * x * (1 - x) / 2, atol=1e-12)
+    np.testing.assert_allclose(c["energy_rate"], x - 1.5 * x * x, atol=1e-9)
+    assert c.attrs["units"]["force"] == "1"
+
+
+def test_fbm_simulate_is_reproducible_and_near_the_theory():
+    a_curve, a = rupture.fbm.simulate("uniform", 100000, seed=3)
+    b_curve, b = rupture.fbm.simulate("uniform", 100000, seed=3)
+    assert a == b
+    assert a_curve.equals(b_curve)
+    assert a["x_c"] == pytest.approx(0.5, abs=0.01)  # N = 1e5: fluctuations ~ N^-1/2
+    _, load = rupture.fbm.simulate("uniform", 100000, seed=3, control="load")
+    assert sum(load["bursts"].values()) > 0 and load["final_burst"] > 0
+    with pytest.raises(rupture.InputError, match="load control only"):
+        rupture.fbm.simulate("uniform", 10, control="strain", sharing="lls")
+
+
+# ---- samples ------------------------------------------------------------------------------------
+
+def test_sample_arrays_are_views_of_the_sample_and_keep_it_alive():
+    s = rupture.sample.generate("tissue-small", seed=1)
+    stats = s.stats()
+    assert (len(s), len(s.bonds)) == (stats["particles"], stats["bonds"])
+    positions = s.positions
+    assert positions.shape == (len(s), 3) and positions.dtype == np.float64
+    assert np.shares_memory(positions, s.positions)  # no copy: two reads see one buffer
+    bonds, rest = s.bonds, s.rest_lengths
+    i, j = bonds[:, 0], bonds[:, 1]
+    assert np.all(i < j)
+    np.testing.assert_allclose(rest, np.linalg.norm(positions[j] - positions[i], axis=1), rtol=1e-12)
+    del s  # the arrays hold the sample
+    assert np.isfinite(positions).all() and rest.min() > 0
+
+
+def test_sample_save_load_round_trip(tmp_path):
+    s = rupture.sample.generate("tissue-small", seed=2)
+    rupture.sample.save(s, tmp_path / "t.rsample")
+    back = rupture.sample.load(tmp_path / "t.rsample")
+    for name in ("positions", "radii", "ids", "groups", "bonds", "rest_lengths"):
+        np.testing.assert_array_equal(getattr(back, name), getattr(s, name), err_msg=name)
+    assert back.density == s.density
+
+
+def test_sample_from_arrays_bonds_touching_particles_and_glues_the_faces():
+    # A column of 5 touching spheres of radius 0.5 mm along y: 4 bonds of 1 mm, the ends glued.
+    positions = [[0.5, 0.5 + k, 0.5] for k in range(5)]
+    s = rupture.sample.from_arrays(positions, [0.5] * 5)
+    np.testing.assert_array_equal(s.bonds, [[0, 1], [1, 2], [2, 3], [3, 4]])
+    np.testing.assert_allclose(s.rest_lengths, 1.0)
+    np.testing.assert_array_equal(s.groups, [1, 0, 0, 0, 2])
+    with pytest.raises(ValueError, match="positions"):
+        rupture.sample.from_arrays([[0, 0]], [0.5])
+    with pytest.raises(ValueError, match="bonds row 0"):
+        rupture.sample.from_arrays(positions, [0.5] * 5, bonds=[[0, 7]])
+
+
+# ---- runs ---------------------------------------------------------------------------------------
+
+def test_run_writes_what_the_command_line_writes(tmp_path):
+    rows = []
+    run = rupture.run(BLOCK, out=tmp_path / "py", progress=rows.append)
+    cli("run", BLOCK, "-o", tmp_path / "cli")
+    assert run.summary["status"] == "finished"
+    for name in ("curves.csv", "breaks.csv"):
+        assert data_rows(tmp_path / "py" / name) == data_rows(tmp_path / "cli" / name), name
+    assert len(rows) == len(run.curves)  # one progress call per curve row
+    assert rows[-1]["steps"] == run.curves["step[1]"].iloc[-1]
+    assert run.curves.attrs["units"]["strain[%]"] == "%"
+    assert run.record["command"].startswith("python: rupture.run(")
+
+
+def test_run_from_a_dict_with_a_sample_object(tmp_path):
+    block = rupture.sample.from_arrays([[0.5 + x, 0.5 + y, 0.5] for x in range(3) for y in range(6)], [0.5] * 18)
+    config = {"bonds": {"stiffness": 1e3, "break_distance": 0.002}, "loading": {"speed": 500.0, "ramp_steps": 500},
+              "stop": {"extra_strain": 0.5, "max_strain": 20.0}, "output": {"interval": 50}}
+    run = rupture.run(config, out=tmp_path / "r", sample=block)
+    assert run.summary["status"] == "finished" and run.summary["stop_reason"] == "separated"
+    assert run.record["sample"]["particles"] == 18
+    assert Path(run.record["config"]["sample"]["file"]) == (tmp_path / "r.rsample").resolve()
+    assert rupture.sample.load(tmp_path / "r.rsample").positions.shape == (18, 3)
+
+
+def test_ctrl_c_writes_a_checkpoint_that_resumes_to_the_same_curves(tmp_path):
+    # A child Python runs a long pull; SIGINT reaches it mid-run. It must stop with a checkpoint and
+    # raise KeyboardInterrupt; `rupture run --resume` then ends the run exactly as one without a stop.
+    script = textwrap.dedent(f"""
+        import rupture
+        try:
+            rupture.run({str(BLOCK)!r}, out={str(tmp_path / 'stopped')!r},
+                        set=["loading.speed=5", "stop.max_strain=2", "output.interval=20"],
+                        progress=lambda p: print("row", flush=True))
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+    """)
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    assert child.stdout.readline().strip() == "row"  # the run has started
+    time.sleep(0.2)
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=120)
+    assert "interrupted" in out
+    record = json.loads((tmp_path / "stopped" / "run.json").read_text())
+    assert record["status"] == "interrupted"
+    cli("run", "--resume", tmp_path / "stopped")
+    cli("run", BLOCK, "-o", tmp_path / "whole", "--set", "loading.speed=5", "--set", "stop.max_strain=2",
+        "--set", "output.interval=20")
+    assert data_rows(tmp_path / "stopped" / "curves.csv") == data_rows(tmp_path / "whole" / "curves.csv")
+
+
+def test_bad_config_is_a_value_error_naming_the_key(tmp_path):
+    with pytest.raises(rupture.InputError, match="bonds.stiffness"):
+        rupture.run({"sample": {"preset": "tissue-small"}, "bonds": {"stiffness": -1.0}}, out=tmp_path / "r")
+    with pytest.raises(ValueError, match="unknown key"):
+        rupture.run(BLOCK, out=tmp_path / "r", set=["bonds.stifness=1"])
+    assert not (tmp_path / "r").exists()
+
+
+# ---- analysis and folders -----------------------------------------------------------------------
+
+def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
+    study = tmp_path / "study"
+    cli("study", "--out", study, "--no-scan")
+    expected = json.loads((study / "run" / "analysis.json").read_text())
+    run = rupture.read_run(study / "run")
+    for a in (rupture.analyze(run.curves), rupture.analyze(study / "run" / "curves.csv"),
+              rupture.analyze(run.curves["strain[%]"], run.curves["force_top[N]"],
+                              run.curves["elastic_energy[mJ]"])):
+        for key in ("x_p", "x_c", "x_m", "A_r"):
+            assert getattr(a, key).value == pytest.approx(expected[key]["value"], rel=1e-12), key
+            assert getattr(a, key).unit == expected[key]["unit"]
+        assert a.delta_x.value == pytest.approx(expected["delta_x"]["mean"], rel=1e-12)
+        assert a.delta_x_ci95 == pytest.approx(tuple(expected["delta_x"]["ci95"]), rel=1e-12)
+        assert a.accepted
+        delta, density = a.posterior
+        assert delta.shape == density.shape and np.all(density >= 0)
+    # Only the file carries the breaks, so only it classifies as the CLI does.
+    assert rupture.analyze(study / "run" / "curves.csv").mechanism == expected["mechanism"]["class"]
+
+
+def test_read_scan_and_the_examples(tmp_path):
+    cli("scan", EXAMPLES / "scan-block.toml", "-o", tmp_path / "scan")
+    scan = rupture.read_scan(tmp_path / "scan")
+    assert len(scan) == 6
+    assert scan.attrs["units"]["k_n[N/mm]"] == "N/mm"
+    assert scan.attrs["scan"]["tool"] == "rupture scan"
+    assert set(scan["status"]) <= {"ok", "no_separation", "unstable", "error"}
+    env = dict(os.environ)
+    folder = EXAMPLES / "python"
+    out = subprocess.run([sys.executable, folder / "figure3.py", tmp_path / "f3.png"], env=env, cwd=tmp_path,
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "x_p = 0.3333, x_c = 0.5000, x_m = 0.6667" in out.stdout
+    assert (tmp_path / "f3.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    out = subprocess.run([sys.executable, folder / "run_and_analyze.py", tmp_path / "b"], env=env, cwd=tmp_path,
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith("finished separated") and "Analysis(x_p=" in out.stdout
+    out = subprocess.run([sys.executable, folder / "scan_table.py", tmp_path / "scan"], env=env, cwd=tmp_path,
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith("6 points,")
