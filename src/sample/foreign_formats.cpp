@@ -265,8 +265,16 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
   Sample sample = build.finish();
   if (!(mass > 0.0)) in.fail("the atoms have no positive density", "give each atom its density in g/mm^3");
   sample.density = one_density ? common_density : mass / volume;
-  if (!written_by_rupture) assign_glued_layers(sample);
   sample.provenance.push_back(fmt::format("imported from LAMMPS data file {}", source));
+  if (!written_by_rupture) {
+    // Another workflow's box is often larger than the packing (a margin, a shrink-wrapped boundary):
+    // the glued layers are those within one smallest radius of the particles' own extent.
+    if (fit_box_to_particles(sample))
+      sample.provenance.push_back("box fitted to the particles' extent (the file's box lies more than one smallest "
+                                  "radius outside them)");
+    assign_glued_layers(sample);
+    sample.provenance.push_back("glued layers: particles within one smallest radius of the bottom and top faces");
+  }
   return sample;
 }
 

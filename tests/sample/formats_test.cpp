@@ -95,6 +95,26 @@ TEST(LammpsData, ReadsAFileWrittenByLammps) {
   EXPECT_DOUBLE_EQ(s.bonds[0].rest_length, 1.5);
 }
 
+// Someone else's workflow leaves a margin around the packing (here 1 mm on every side): the glued
+// layers are found against the particles' own extent, not 1 mm away where there are none.
+TEST(LammpsData, GluedLayersOfAFileWhoseBoxHasAMargin) {
+  const std::string text =
+      "LAMMPS data file via write_data, version 2 Aug 2023, timestep = 0, units = si\n\n"
+      "3 atoms\n1 atom types\n2 bonds\n1 bond types\n\n"
+      "-1 5 xlo xhi\n-1 5 ylo yhi\n-1 3 zlo zhi\n\n"
+      "Atoms # hybrid bond sphere\n\n"
+      "1 1 1.0 0.5 1.0 7 1.0 0.002 0 0 0\n"
+      "3 1 1.0 3.5 1.0 7 1.0 0.002 0 0 0\n"
+      "2 1 1.0 2.0 1.0 7 1.0 0.002 0 0 0\n\n"
+      "Bonds\n\n1 1 1 2\n2 1 3 2\n";
+  const Sample s = parse_lammps_data(text, "margin.data");
+  EXPECT_EQ(s.box.lower.y, 0.0);  // the particles' extent: 0.5 - 0.5 to 3.5 + 0.5
+  EXPECT_EQ(s.box.upper.y, 4.0);
+  EXPECT_EQ(s.group,
+            (std::vector<ParticleGroup>{ParticleGroup::bottom, ParticleGroup::top, ParticleGroup::free}));
+  EXPECT_THAT(s.provenance.back(), HasSubstr("glued layers"));
+}
+
 // LAMMPS's write_data names hybrid styles without their sub-styles; the order rupture writes is
 // assumed and checked through the molecule-ID column.
 TEST(LammpsData, BareHybridStyleIsReadAsSphereBond) {
