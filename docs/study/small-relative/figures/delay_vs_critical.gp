@@ -1,4 +1,4 @@
-# rupture 0.1.0 (ac4099f-dirty) plot small-relative
+# rupture 0.1.0 (588cc07-dirty) plot small-relative
 # read: small-relative/results.csv
 # Draws delay_vs_critical.png and/or delay_vs_critical.svg from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -29,11 +29,11 @@ do for [format in formats] {
     set terminal svg size width, height enhanced font font_spec background rgb "white"
     set output "delay_vs_critical.svg"
   }
-  set title "Delay of failure behind the precursor (16 analysed points; 1 with δ_x ≤ 0 cannot be shown on log axes)"
+  set title "Delay of failure behind the precursor (28 analysed points; 1 with δ_x ≤ 0 cannot be shown on log axes)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.026276211041327397:110.0756297806291]
-  set yrange [0.0008758737013775799:110.0756297806291]
+  set xrange [0.02424877259944211:110.0756297806291]
+  set yrange [0.0008082924199814037:110.0756297806291]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

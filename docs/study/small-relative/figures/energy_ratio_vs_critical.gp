@@ -1,4 +1,4 @@
-# rupture 0.1.0 (ac4099f-dirty) plot small-relative
+# rupture 0.1.0 (588cc07-dirty) plot small-relative
 # read: small-relative/results.csv
 # Draws energy_ratio_vs_critical.png and/or energy_ratio_vs_critical.svg from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -29,10 +29,10 @@ do for [format in formats] {
     set terminal svg size width, height enhanced font font_spec background rgb "white"
     set output "energy_ratio_vs_critical.svg"
   }
-  set title "Energy ratio A_r against critical strain (16 analysed points)"
+  set title "Energy ratio A_r against critical strain (28 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.026276211041327397:110.0756297806291]
+  set xrange [0.02424877259944211:110.0756297806291]
   set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics autofreq
@@ -46,7 +46,8 @@ do for [format in formats] {
   unset arrow
   unset label
   plot "energy_ratio_vs_critical.dat" index 0 using 1:2:3:4:5:6 with xyerrorbars pointtype 7 pointsize 1.5 linecolor rgb "#1f77b4" title "Γ < 1", \
-    '' index 1 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: A_r = 1.333", \
-    '' index 2 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: A_r = 0.837"
+    '' index 1 using 1:2:3:4:5:6 with xyerrorbars pointtype 5 pointsize 1.5 linecolor rgb "#2ca02c" title "1 ≤ Γ ≤ 5", \
+    '' index 2 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: A_r = 1.333", \
+    '' index 3 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: A_r = 0.837"
   unset output
 }

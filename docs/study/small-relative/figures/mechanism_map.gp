@@ -1,4 +1,4 @@
-# rupture 0.1.0 (ac4099f-dirty) plot small-relative
+# rupture 0.1.0 (588cc07-dirty) plot small-relative
 # read: small-relative/results.csv
 # Draws mechanism_map.png and/or mechanism_map.svg from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -29,7 +29,7 @@ do for [format in formats] {
     set terminal svg size width, height enhanced font font_spec background rgb "white"
     set output "mechanism_map.svg"
   }
-  set title "Breaking mechanisms over the scan (53 points)"
+  set title "Breaking mechanisms over the scan (49 points)"
   set xlabel "bond stiffness k_n [N/mm]"
   set ylabel "breaking distance b_d [mm]"
   set xrange [5:20000]
