@@ -220,6 +220,10 @@ const std::vector<Key>& schema() {
                            &RunConfig::dt_safety, Range{0, 1, true}));
     k.push_back(number_key("time", "allow_unstable_dt", "", "accept a dt above the stability limit",
                            &RunConfig::allow_unstable_dt));
+    k.push_back(number_key("stop", "at_separation", "",
+                           "stop extra_strain after the sample separated (false: pull on to max_strain or "
+                           "max_steps; the separation is still recorded)",
+                           &RunConfig::stop_at_separation));
     k.push_back(number_key("stop", "extra_strain", "%", "strain to keep pulling after the sample separated",
                            &RunConfig::extra_strain, Range{0, 1e4}));
     k.push_back(number_key("stop", "max_strain", "%", "stop at this strain", &RunConfig::max_strain,

@@ -44,6 +44,7 @@ struct RunConfig {
   double dt_safety = 0.4;          // 1: dt = safety * critical dt
   bool allow_unstable_dt = false;  // accept a dt above the stability limit
   // [stop]
+  bool stop_at_separation = true;                 // false: run to max_strain / max_steps whatever happens
   double extra_strain = 0.5;                      // %: keep pulling this much after separation
   double max_strain = 100.0;                      // %
   std::int64_t max_steps = 100'000'000;           // steps

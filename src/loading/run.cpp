@@ -553,7 +553,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
         loop.separated = !loop.separation_rule.empty();
         loop.separation_strain = strain;
       }
-      if (loop.separated && strain >= loop.separation_strain + config.extra_strain) {
+      if (config.stop_at_separation && loop.separated && strain >= loop.separation_strain + config.extra_strain) {
         summary.stop_reason = "separated";
         break;
       }

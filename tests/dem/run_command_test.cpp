@@ -107,6 +107,21 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   EXPECT_GE(breaks.rows(), 8u) << "at least one bond per column";
 }
 
+// One switch keeps a run going past separation: it stops at max_strain, with the separation still
+// recorded where it happened.
+TEST(RunCommand, StopAtSeparationFalsePullsOnToMaxStrain) {
+  TempDir dir;
+  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") +
+                             " --set stop.at_separation=false --set stop.max_strain=3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
+  EXPECT_EQ(report["stop_reason"], "max_strain");
+  EXPECT_GE(report["final_strain_percent"].get<double>(), 3.0);
+  ASSERT_TRUE(report["separation_strain_percent"].is_number());
+  EXPECT_LT(report["separation_strain_percent"].get<double>(), 1.0);  // the block parts near 0.3 %
+  EXPECT_EQ(report["config"]["stop"]["at_separation"], false);
+}
+
 TEST(RunCommand, SnapshotsAreWrittenForParaView) {
   TempDir dir;
   const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") +
