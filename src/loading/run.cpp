@@ -679,7 +679,8 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
   return execute(config, sample, folder, command, options, nullptr);
 }
 
-RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command) {
+RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command,
+                             const RunOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
     throw InputError(folder.string(), "is not a run folder", "give the folder of the run to continue");
@@ -716,7 +717,7 @@ RunSummary resume_simulation(const std::filesystem::path& folder, const std::str
                "content: an edit to them before the resume would go unnoticed\n",
                source, c.format);
   ResumePoint point{loaded, command, lock};
-  return execute(config, sample, folder, c.command, {}, &point);
+  return execute(config, sample, folder, c.command, options, &point);
 }
 
 }  // namespace rupture::loading

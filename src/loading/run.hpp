@@ -102,6 +102,8 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
 // InputError, the folder untouched, when another process writes it, there is no readable
 // checkpoint, the run already ended, the sample changed since the run began, or curves.csv or
 // breaks.csv no longer begin with what the checkpoint recorded (their length and hash).
-RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command);
+// `options.on_row` and `echo_monitor` apply as in run_simulation (`existing` does not).
+RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command,
+                             const RunOptions& options = {});
 
 }  // namespace rupture::loading

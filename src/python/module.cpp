@@ -237,20 +237,13 @@ SamplePtr sample_from_arrays(const py::array_t<double, py::array::c_style | py::
 
 // ---- runs --------------------------------------------------------------------------------------
 
-// Runs with the GIL released. After each curve row the progress callback (if any) is called with the
-// GIL held, and Python's pending signals are checked: Ctrl-C stops the run with a checkpoint and
-// raises KeyboardInterrupt here, as in any Python loop.
-// The config is a TOML file (relative sample paths from its folder) or, when `config_file` is empty,
-// TOML text; the run goes into the config's output.folder.
-py::dict run(const std::filesystem::path& config_file, const std::string& toml_text,
-             const std::vector<std::string>& overrides, const std::string& command, bool overwrite,
-             const std::optional<py::function>& progress) {
-  const loading::RunConfig config = config_file.empty() ? loading::parse_config(toml_text, "<dict>", overrides)
-                                                        : loading::load_config(config_file, overrides);
-  std::optional<py::error_already_set> raised;
+// The run's progress hook for Python: after each curve row, with the GIL held, Python's pending signals
+// are checked and the progress callback (if any) is called. Ctrl-C or an exception from the callback
+// stops the run with a checkpoint; the exception is kept in `raised` and thrown after the run.
+loading::RunOptions python_run_options(const std::optional<py::function>& progress,
+                                       std::optional<py::error_already_set>& raised) {
   loading::RunOptions options;
-  options.existing = overwrite ? loading::Existing::overwrite : loading::Existing::refuse;
-  options.on_row = [&](const loading::RunProgress& p) {
+  options.on_row = [&progress, &raised](const loading::RunProgress& p) {
     py::gil_scoped_acquire acquire;
     try {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -268,13 +261,10 @@ py::dict run(const std::filesystem::path& config_file, const std::string& toml_t
     }
     return true;
   };
-  loading::RunSummary summary;
-  {
-    py::gil_scoped_release release;
-    const Sample sample = loading::resolve_sample(config);
-    summary = loading::run_simulation(config, sample, config.output_folder, command, options);
-  }
-  if (raised) throw std::move(*raised);
+  return options;
+}
+
+py::dict summary_dict(const loading::RunSummary& summary, const std::filesystem::path& folder) {
   py::dict out;
   out["status"] = summary.status;
   out["stop_reason"] = summary.stop_reason;
@@ -283,9 +273,44 @@ py::dict run(const std::filesystem::path& config_file, const std::string& toml_t
   out["broken_bonds"] = summary.broken_bonds;
   out["wall_s"] = summary.wall_seconds;
   out["max_relative_energy_error"] = summary.max_relative_energy_error;
-  out["folder"] = config.output_folder;
+  out["folder"] = folder;
   out["checkpoint"] = summary.checkpoint.empty() ? py::object(py::none()) : py::str(summary.checkpoint.string());
   return out;
+}
+
+// Runs with the GIL released (python_run_options for the rest). The config is a TOML file (relative
+// sample paths from its folder) or, when `config_file` is empty, TOML text; the run goes into the
+// config's output.folder.
+py::dict run(const std::filesystem::path& config_file, const std::string& toml_text,
+             const std::vector<std::string>& overrides, const std::string& command, bool overwrite,
+             const std::optional<py::function>& progress) {
+  const loading::RunConfig config = config_file.empty() ? loading::parse_config(toml_text, "<dict>", overrides)
+                                                        : loading::load_config(config_file, overrides);
+  std::optional<py::error_already_set> raised;
+  loading::RunOptions options = python_run_options(progress, raised);
+  options.existing = overwrite ? loading::Existing::overwrite : loading::Existing::refuse;
+  loading::RunSummary summary;
+  {
+    py::gil_scoped_release release;
+    const Sample sample = loading::resolve_sample(config);
+    summary = loading::run_simulation(config, sample, config.output_folder, command, options);
+  }
+  if (raised) throw std::move(*raised);
+  return summary_dict(summary, config.output_folder);
+}
+
+// Continues an interrupted run from its newest checkpoint, as `rupture run --resume`.
+py::dict resume(const std::filesystem::path& folder, const std::string& command,
+                const std::optional<py::function>& progress) {
+  std::optional<py::error_already_set> raised;
+  const loading::RunOptions options = python_run_options(progress, raised);
+  loading::RunSummary summary;
+  {
+    py::gil_scoped_release release;
+    summary = loading::resume_simulation(folder, command, options);
+  }
+  if (raised) throw std::move(*raised);
+  return summary_dict(summary, folder);
 }
 
 // ---- analysis ----------------------------------------------------------------------------------
@@ -404,6 +429,7 @@ PYBIND11_MODULE(_rupture, m) {
 
   m.def("run", &run, py::arg("config_file"), py::arg("toml_text"), py::arg("overrides"), py::arg("command"),
         py::arg("overwrite"), py::arg("progress"));
+  m.def("resume", &resume, py::arg("folder"), py::arg("command"), py::arg("progress"));
   m.def("config_reference", &loading::config_reference);
 
   m.def("analyze_arrays", &analyze_arrays, py::arg("strain"), py::arg("force"), py::arg("energy"),

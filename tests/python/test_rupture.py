@@ -131,9 +131,9 @@ def test_run_from_a_dict_with_a_sample_object(tmp_path):
     assert rupture.sample.load(tmp_path / "r.rsample").positions.shape == (18, 3)
 
 
-def test_ctrl_c_writes_a_checkpoint_that_resumes_to_the_same_curves(tmp_path):
+def test_ctrl_c_writes_a_checkpoint_that_python_resumes_to_the_same_curves(tmp_path):
     # A child Python runs a long pull; SIGINT reaches it mid-run. It must stop with a checkpoint and
-    # raise KeyboardInterrupt; `rupture run --resume` then ends the run exactly as one without a stop.
+    # raise KeyboardInterrupt; rupture.resume then ends the run exactly as one without a stop.
     script = textwrap.dedent(f"""
         import rupture
         try:
@@ -151,7 +151,8 @@ def test_ctrl_c_writes_a_checkpoint_that_resumes_to_the_same_curves(tmp_path):
     assert "interrupted" in out
     record = json.loads((tmp_path / "stopped" / "run.json").read_text())
     assert record["status"] == "interrupted"
-    cli("run", "--resume", tmp_path / "stopped")
+    resumed = rupture.resume(tmp_path / "stopped")
+    assert resumed.summary["status"] == "finished"
     cli("run", BLOCK, "-o", tmp_path / "whole", "--set", "loading.speed=5", "--set", "stop.max_strain=2",
         "--set", "output.interval=20")
     assert data_rows(tmp_path / "stopped" / "curves.csv") == data_rows(tmp_path / "whole" / "curves.csv")

@@ -14,7 +14,7 @@ from ._rupture import InputError, RunError, version as __version__
 from . import fbm, sample
 from .analysis import Analysis, Measured, analyze
 from .folders import Run, read_curves, read_run, read_scan
-from .runs import config_reference, run
+from .runs import config_reference, resume, run
 
 __all__ = ["Analysis", "InputError", "Measured", "Run", "RunError", "analyze", "config_reference", "fbm",
-           "read_curves", "read_run", "read_scan", "run", "sample"]
+           "read_curves", "read_run", "read_scan", "resume", "run", "sample"]

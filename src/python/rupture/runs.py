@@ -1,6 +1,6 @@
 """Tension tests from Python: `run(config)` with a dict or a TOML file, `--set`-style overrides, a
-progress callback; Ctrl-C stops the run with a checkpoint (continue with `rupture run --resume`) and
-raises KeyboardInterrupt.
+progress callback; Ctrl-C stops the run with a checkpoint and raises KeyboardInterrupt; `resume(folder)`
+(or `rupture run --resume`) continues it.
 """
 import json
 import math
@@ -72,6 +72,16 @@ def run(config, out=None, set=(), progress=None, overwrite=False, sample=None):
     command = "python: rupture.run(" + (repr(config_file) if config_file else "{...}") + \
         "".join(f", set {o}" for o in overrides) + ")"
     summary = _rupture.run(config_file, text, overrides, command, bool(overwrite), progress)
+    result = read_run(summary["folder"])
+    result.summary = summary
+    return result
+
+
+def resume(folder, progress=None):
+    """Continues an interrupted run (Ctrl-C, a kill, a full disk) from its newest checkpoint, as
+    `rupture run --resume FOLDER`: the outputs come out byte-identical to an uninterrupted run.
+    Returns its Run; `progress` and Ctrl-C work as in run()."""
+    summary = _rupture.resume(str(folder), f"python: rupture.resume({str(folder)!r})", progress)
     result = read_run(summary["folder"])
     result.summary = summary
     return result
