@@ -5,11 +5,41 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <algorithm>
 #include <exception>
+#include <string>
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "rupture/version.hpp"
+
+namespace {
+
+// The first word of the command line that names no subcommand where one is expected ("rupture nosuch",
+// "rupture fbm nosuch"), as a one-line message listing the ones there are; empty when every word fits.
+// CLI11 alone would only say "A subcommand is required".
+std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* at = &app;
+  std::string path = "rupture";
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    const auto subcommands = at->get_subcommands([](const CLI::App*) { return true; });
+    if (word.empty() || word[0] == '-' || subcommands.empty()) return {};
+    const auto match = std::find_if(subcommands.begin(), subcommands.end(),
+                                    [&](const CLI::App* s) { return s->get_name() == word; });
+    if (match == subcommands.end()) {
+      std::string names;
+      for (const auto* s : subcommands) names += (names.empty() ? "" : ", ") + s->get_name();
+      return fmt::format("unknown subcommand '{}' of {}; the subcommands are {} (see {} --help)", word, path,
+                         names, path);
+    }
+    at = *match;
+    path += " " + word;
+  }
+  return {};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace rupture;
@@ -31,6 +61,10 @@ int main(int argc, char** argv) {
   cli::add_plot_command(app, exit_code);
   cli::add_scan_command(app, exit_code);
   cli::add_report_command(app, exit_code);
+  if (const std::string unknown = unknown_subcommand(app, argc, argv); !unknown.empty()) {
+    fmt::print(stderr, "rupture: error: {}\n", unknown);
+    return exit_bad_input;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

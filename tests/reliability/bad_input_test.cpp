@@ -141,6 +141,12 @@ std::vector<BadInput> bad_inputs() {
       {"run_into_root", "good.toml", block_config, "run {in} -o /",
        "/: is the root folder; a run writes a dozen files into its folder; give a folder of its own, e.g. -o "
        "run"},
+      {"unknown_subcommand", "unused.txt", "", "simulate {in}",
+       "unknown subcommand 'simulate' of rupture; the subcommands are study, fbm, sample, run, check, bench, "
+       "analyze, monitor, plot, scan, report (see rupture --help)"},
+      {"unknown_nested_subcommand", "unused.txt", "", "fbm theroy --dist uniform",
+       "unknown subcommand 'theroy' of rupture fbm; the subcommands are theory, curves, simulate (see rupture fbm "
+       "--help)"},
       {"config_override_without_value", "good.toml", block_config,
        "run {in} -o {dir}/out --set bonds.stiffness",
        "--set bonds.stiffness: expects key=value; write e.g. --set bonds.stiffness=1e4"},
