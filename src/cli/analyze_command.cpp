@@ -24,25 +24,26 @@ std::string with_error(const analysis::Measured& m) {
   return m.error > 0.0 ? fmt::format("{:.6g} ± {:.2g} {}", m.value, m.error, m.unit) : fmt::format("{:.6g} {}", m.value, m.unit);
 }
 
-void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output) {
+// The text summary on `out` (stderr when the document itself goes to stdout with -o -).
+void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output, std::FILE* out) {
   for (const auto& warning : r.warnings) fmt::print(stderr, "rupture analyze: warning: {}\n", warning);
-  fmt::print("{}: {} rows", r.source, r.resample.input_rows);
+  fmt::print(out, "{}: {} rows", r.source, r.resample.input_rows);
   if (r.resample.resampled || r.resample.duplicates_merged > 0 || r.resample.block_average > 1) {
-    fmt::print(" ({}{}{} -> {} uniform rows)",
+    fmt::print(out, " ({}{}{} -> {} uniform rows)",
                r.resample.duplicates_merged > 0 ? fmt::format("{} duplicates merged, ", r.resample.duplicates_merged) : "",
                r.resample.resampled ? "resampled" : "uniform",
                r.resample.block_average > 1 ? fmt::format(", averaged in blocks of {}", r.resample.block_average) : "",
                r.resample.output_rows);
   }
-  fmt::print("\n  filter      {}", analysis::to_string(r.filter.kind));
+  fmt::print(out, "\n  filter      {}", analysis::to_string(r.filter.kind));
   if (r.filter.kind == analysis::FilterKind::butterworth) {
-    fmt::print(" order {}, cutoff {:.4g} x Nyquist", r.filter.butterworth_order, r.filter.cutoff);
+    fmt::print(out, " order {}, cutoff {:.4g} x Nyquist", r.filter.butterworth_order, r.filter.cutoff);
   } else if (r.filter.kind == analysis::FilterKind::savitzky_golay) {
-    fmt::print(" window {}, order {}", r.filter.savgol_window, r.filter.savgol_order);
+    fmt::print(out, " window {}, order {}", r.filter.savgol_window, r.filter.savgol_order);
   }
-  fmt::print("; derivative window {} samples\n", r.derivative_window);
-  const auto line = [](const char* name, const std::optional<analysis::Measured>& m) {
-    fmt::print("  {:<11} {}\n", name, m ? with_error(*m) : std::string("not found"));
+  fmt::print(out, "; derivative window {} samples\n", r.derivative_window);
+  const auto line = [out](const char* name, const std::optional<analysis::Measured>& m) {
+    fmt::print(out, "  {:<11} {}\n", name, m ? with_error(*m) : std::string("not found"));
   };
   line("x_c", r.x_c);
   line("F_c", r.F_c);
@@ -52,25 +53,25 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   line("E_max", r.E_max);
   if (r.delay) {
     const auto& d = *r.delay;
-    fmt::print("  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n", d.mean, d.sd,
+    fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n", d.mean, d.sd,
                r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);
-  if (r.alpha.alpha) fmt::print("  alpha       {:.3g} (from delta_x/x_p, FBM power law)\n", *r.alpha.alpha);
+  if (r.alpha.alpha) fmt::print(out, "  alpha       {:.3g} (from delta_x/x_p, FBM power law)\n", *r.alpha.alpha);
   if (r.alpha.gamma_in_band || r.alpha.energy_ratio_in_band) {
     const auto yes_no = [](const std::optional<bool>& b) { return b ? (*b ? "yes" : "no") : "n/a"; };
-    fmt::print("  FBM band    Gamma in [{:.3g}, {:.3g}]: {}; A_r in [{:.3g}, {:.3g}]: {}\n", r.alpha.gamma_band_low,
+    fmt::print(out, "  FBM band    Gamma in [{:.3g}, {:.3g}]: {}; A_r in [{:.3g}, {:.3g}]: {}\n", r.alpha.gamma_band_low,
                r.alpha.gamma_band_high, yes_no(r.alpha.gamma_in_band), r.alpha.energy_ratio_band_low,
                r.alpha.energy_ratio_band_high, yes_no(r.alpha.energy_ratio_in_band));
   }
   if (r.mechanism)
-    fmt::print("  mechanism   {} ({})\n",
+    fmt::print(out, "  mechanism   {} ({})\n",
                r.accepted ? analysis::to_string(r.mechanism->mechanism)
                           : fmt::format("none, rejected; the features say {}", analysis::to_string(r.mechanism->mechanism)),
                r.mechanism->reason);
-  fmt::print("  {}\n", r.accepted ? "accepted" : "REJECTED: " + r.rejection);
-  fmt::print("  wrote {}\n", output.string());
+  fmt::print(out, "  {}\n", r.accepted ? "accepted" : "REJECTED: " + r.rejection);
+  fmt::print(out, "  wrote {}\n", output == "-" ? std::string("the document to standard output") : output.string());
 }
 
 }  // namespace
@@ -97,8 +98,8 @@ AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
   const auto analysed = analysis::analyze_curve_file(inputs, "rupture analyze");
   const std::filesystem::path output =
       options.output.empty() ? inputs.curves.parent_path() / "analysis.json" : std::filesystem::path(options.output);
-  io::write_json_atomically(output, analysed.document);
-  print_summary(analysed.result, output);
+  io::write_output(output, analysed.document.dump(2) + "\n");
+  print_summary(analysed.result, output, output == "-" ? stderr : stdout);
   return {analysed.result, output};
 }
 
@@ -107,7 +108,7 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("analyze", "Analyse a loading curve for the precursor of failure (x_c, x_p, delta_x, Gamma, A_r, class)");
   cmd->add_option("curves", o->curves, "CSV with a header: rupture's curves.csv, an FBM curve, or any table (name the columns)")
       ->required();
-  cmd->add_option("-o,--output", o->output, "Result file (default: analysis.json beside the curves)");
+  cmd->add_option("-o,--out,--output", o->output, "Result file (default: analysis.json beside the curves; - for stdout)");
   cmd->add_option("--breaks", o->breaks, "Bond-break table with a strain column (default: breaks.csv beside the curves, if present)");
   cmd->add_flag("--no-breaks", o->no_breaks, "Ignore any breaks.csv");
   add_curve_column_options(*cmd, o->columns);

@@ -122,14 +122,14 @@ void add_curves(CLI::App& fbm_app) {
   auto o = std::make_shared<Options>();
   app->add_option("--dist", o->spec, "Threshold distribution (see `fbm theory --help`)")
       ->capture_default_str();
-  app->add_option("--out", o->out, "CSV file to write")->required();
+  app->add_option("-o,--out", o->out, "CSV file to write (- for stdout)")->required();
   app->add_option("--points", o->points, "Number of strains, equally spaced from 0 to the end of the support")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{3}, std::size_t{100000000}));
   app->callback([o] {
     const auto dist = load_distribution(o->spec);
     const auto curve = fbm::theory_curve(*dist, o->points);
-    io::write_file_atomically(
+    io::write_output(
         o->out, csv_text(curve, {fmt::format("rupture {}", version_string),
                                  fmt::format("fbm curves --dist {} --points {}", dist->spec(), o->points),
                                  std::string("ELS theory, ") + units_note}));
@@ -140,7 +140,8 @@ void add_simulate(CLI::App& fbm_app) {
   auto* app =
       fbm_app.add_subcommand("simulate", "Simulate a finite bundle (strain- or load-controlled, ELS or LLS)");
   struct Options {
-    std::string spec = "uniform", sharing = "els", control, out, bursts, json_out;
+    std::string spec = "uniform", sharing = "els", control, out, bursts;
+    bool json = false;
     std::size_t fibers = 1000000, points = 2001;
     std::uint64_t seed = 1;
   };
@@ -158,10 +159,10 @@ void add_simulate(CLI::App& fbm_app) {
   app->add_option("--control", o->control,
                   "strain (default for els) or load (default, and the only choice, for lls)")
       ->check(CLI::IsMember({"strain", "load"}));
-  app->add_option("--out", o->out, "CSV curve to write");
+  app->add_option("-o,--out", o->out, "CSV curve to write");
   app->add_option("--bursts", o->bursts,
                   "CSV of burst sizes (load control; default: beside --out as NAME_bursts.csv)");
-  app->add_option("--json", o->json_out, "Write the JSON summary to this file ('-' prints it)");
+  app->add_flag("--json", o->json, "Print the summary as JSON instead of a table");
   app->add_option("--points", o->points, "At most this many rows in the CSV curve")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{3}, std::size_t{100000000}));
@@ -233,10 +234,9 @@ void add_simulate(CLI::App& fbm_app) {
       summary["final_burst"] = load->final_burst;
       summary["bursts_file"] = bursts_path.empty() ? json(nullptr) : json(bursts_path);
     }
-    if (o->json_out == "-") {
+    if (o->json) {
       fmt::print("{}\n", summary.dump(2));
     } else {
-      if (!o->json_out.empty()) io::write_json_atomically(o->json_out, summary);
       fmt::print("finite bundle, N = {}, seed {}, {} sharing, {} control, dist {}\n{}\n{}", o->fibers,
                  o->seed, o->sharing, control, dist->spec(), units, characteristics_table(result.measured));
       if (load)

@@ -20,7 +20,6 @@
 #include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
-#include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "rupture/version.hpp"
 
@@ -29,7 +28,8 @@ namespace rupture::cli {
 namespace {
 
 struct MonitorCommandOptions {
-  std::string file = "-", json;
+  std::string file = "-";
+  bool json = false;
   bool follow = false;
   double idle_timeout = 10.0;  // s without new data before a followed file counts as finished
   int poll_ms = 200;           // ms between reads of a followed file
@@ -139,7 +139,8 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--poll", o->poll_ms, "Milliseconds between reads of a followed file")
       ->check(CLI::Range(1, 60000));
-  cmd->add_option("--json", o->json, "Also write the warning and the outcome to this JSON file");
+  cmd->add_flag("--json", o->json,
+                "Print the warning and the outcome as one JSON document at the end (the live warning goes to stderr)");
   add_curve_column_options(*cmd, o->columns);
   cmd->add_option("--window", o->monitor.window, "Samples in each causal cubic fit")
       ->check(CLI::Range(7, 100000));
@@ -168,24 +169,42 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       const double f = o->columns.force_scale * row[columns->force];
       const double e = o->columns.energy_scale * row[columns->energy];
       if (const auto w = monitor->add_point(x, f, e)) {
-        fmt::print(
+        std::FILE* live = o->json ? stderr : stdout;  // --json keeps stdout for the document
+        fmt::print(live,
             "WARNING at strain {:.6g} {}: energy-rate maximum passed (x_p = {:.6g} ± {:.2g} {}) while the "
             "force "
             "still rises; predicted x_c in {} {}, E_max in {} {} (FBM, 0 <= alpha <= 5)\n",
             w->strain, columns->strain_unit, w->x_p, w->x_p_error, columns->strain_unit, interval(w->x_c),
             columns->strain_unit, interval(w->E_max), columns->energy_unit);
         if (!w->in_time) {
-          fmt::print(
+          fmt::print(live,
               "the rows are too far apart to warn in time: this warning comes after the earliest predicted "
               "x_c; "
               "rows at most {:.3g} {} apart would have warned before it\n",
               w->max_row_spacing, columns->strain_unit);
         }
-        std::fflush(stdout);
+        std::fflush(live);
       }
     }
     if (!columns) columns = analysis::find_curve_columns(csv->header(), o->columns);  // a header, no rows
     const auto s = monitor->summary();
+    if (o->json) {
+      nlohmann::json j = {{"tool", "rupture monitor"},
+                          {"version", version_string},
+                          {"inputs",
+                           {{"file", o->file},
+                            {"window", o->monitor.window},
+                            {"drop", o->monitor.drop},
+                            {"confirm", o->monitor.confirm},
+                            {"alpha_range", {o->monitor.alpha_low, o->monitor.alpha_high}}}},
+                          {"units",
+                           {{"strain", columns->strain_unit},
+                            {"force", columns->force_unit},
+                            {"energy", columns->energy_unit}}}};
+      j.update(analysis::to_json(s));
+      fmt::print("{}\n", j.dump(2));
+      return;
+    }
     fmt::print("{} samples read from {}\n", s.samples, input.source());
     if (!s.warning) {
       fmt::print("no warning: {}\n", s.force_peaked_before_warning
@@ -200,22 +219,6 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
     if (s.E_max_held)
       fmt::print("observed E_max = {:.6g} {}; E_max prediction {}\n", *s.E_max, columns->energy_unit,
                  *s.E_max_held ? "held" : "missed");
-    if (!o->json.empty()) {
-      nlohmann::json j = {{"tool", "rupture monitor"},
-                          {"version", version_string},
-                          {"inputs",
-                           {{"file", o->file},
-                            {"window", o->monitor.window},
-                            {"drop", o->monitor.drop},
-                            {"confirm", o->monitor.confirm},
-                            {"alpha_range", {o->monitor.alpha_low, o->monitor.alpha_high}}}},
-                          {"units",
-                           {{"strain", columns->strain_unit},
-                            {"force", columns->force_unit},
-                            {"energy", columns->energy_unit}}}};
-      j.update(analysis::to_json(s));
-      io::write_json_atomically(o->json, j);
-    }
     (void)exit_code;
   });
 }

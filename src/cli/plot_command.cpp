@@ -29,7 +29,7 @@ void add_plot_command(CLI::App& app, int& /*exit_code*/) {
           "(results.csv)")
       ->required();
   command->add_option(
-      "--out", options->out,
+      "-o,--out", options->out,
       "Folder for NAME.gp, NAME.dat, NAME.png, NAME.svg (default: figures/ beside the input)");
   command->add_option("--format", options->format, "png, svg or both")
       ->check(CLI::IsMember({"png", "svg", "both"}));

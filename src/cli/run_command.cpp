@@ -50,7 +50,7 @@ loading::RunConfig load(const RunOptions& options) {
 std::string command_line(const std::string& name, const RunOptions& options) {
   std::string line = "rupture " + name + " " + options.config;
   for (const auto& o : options.overrides) line += " --set " + o;
-  if (!options.output.empty()) line += " --output " + options.output;
+  if (!options.output.empty()) line += " --out " + options.output;
   if (options.overwrite) line += " --overwrite";
   return line;
 }
@@ -82,7 +82,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
   auto run_options = std::make_shared<RunOptions>();
   auto* run = app.add_subcommand("run", "Run a DEM tension test from a TOML config");
   add_config_options(*run, *run_options);
-  run->add_option("-o,--output", run_options->output, "output folder (overrides output.folder)");
+  run->add_option("-o,--out,--output", run_options->output, "output folder (overrides output.folder)");
   run->add_flag("--overwrite", run_options->overwrite,
                 "replace the outputs of a run that ended in the output folder (a folder holding other "
                 "files, or an unfinished run, is still refused)");
@@ -96,7 +96,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     const auto& options = *run_options;
     if (!options.resume.empty() && (!options.config.empty() || !options.overrides.empty() ||
                                     !options.output.empty() || options.overwrite))
-      throw InputError("rupture run --resume", "takes no config, --set, --output or --overwrite",
+      throw InputError("rupture run --resume", "takes no config, --set, -o/--out or --overwrite",
                        "a resumed run keeps the config and folder it began with: run `rupture run --resume " +
                            options.resume + "` alone");
     loading::install_interrupt_handlers();

@@ -65,7 +65,7 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
   generate->add_option("--seed", gen->seed, "Random seed (same seed, same sample, byte for byte)")
       ->required();
   generate
-      ->add_option("--out", gen->out,
+      ->add_option("-o,--out", gen->out,
                    "Output file; format from the extension (.sample own, .data LAMMPS, "
                    ".geo LSMGeometry, .vtp VTK) unless --format")
       ->required();

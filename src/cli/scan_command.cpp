@@ -35,7 +35,7 @@ struct ScanOptions {
 
 std::string command_line(const ScanOptions& o) {
   std::string line = "rupture scan " + o.target;
-  if (!o.output.empty()) line += " --output " + o.output;
+  if (!o.output.empty()) line += " --out " + o.output;
   if (o.jobs > 0) line += fmt::format(" --jobs {}", o.jobs);
   if (o.threads > 0) line += fmt::format(" --threads {}", o.threads);
   if (o.task_index >= 0) line += fmt::format(" --task-index {}", o.task_index);
@@ -132,7 +132,7 @@ void add_scan_command(CLI::App& app, int& /*exit_code*/) {
                                  "point, resumably, in parallel or under MPI");
   cmd->add_option("scan", o->target,
                   "Scan config (TOML; see docs/scan.md); with --collect also a scan folder");
-  cmd->add_option("-o,--output", o->output, "Scan folder (overrides [scan] output)");
+  cmd->add_option("-o,--out,--output", o->output, "Scan folder (overrides [scan] output)");
   cmd->add_option("-j,--jobs", o->jobs, "Points run at once (default: from the core count)")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("-t,--threads", o->threads, "Threads inside each run (default: the cores left per job)")

@@ -121,4 +121,13 @@ void require_text(std::string_view text, const std::string& source, std::size_t 
                    "give the text file (TOML, CSV) itself; a copy interrupted mid-way can end in NULs");
 }
 
+void write_output(const std::filesystem::path& target, std::string_view content) {
+  if (target == "-") {
+    std::fwrite(content.data(), 1, content.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  write_file_atomically(target, content);
+}
+
 }  // namespace rupture::io

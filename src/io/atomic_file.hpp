@@ -38,6 +38,10 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
 // Pretty-printed JSON (2-space indent, trailing newline), written atomically.
 void write_json_atomically(const std::filesystem::path& target, const nlohmann::json& document);
 
+// The command-line convention for outputs: "-" is standard output, anything else a file written
+// atomically as above.
+void write_output(const std::filesystem::path& target, std::string_view content);
+
 // "PATH: write failed (reason); what to do", for a write that failed with `error` (errno): a full
 // disk, or the file size limit (EFBIG, `ulimit -f`; SIGXFSZ is ignored so that it arrives here).
 std::string write_failure(const std::filesystem::path& path, int error);

@@ -246,7 +246,7 @@ std::unique_ptr<io::FolderLock> claim_new_folder(const std::filesystem::path& fo
                                                  const dem::System& system, const std::string& command,
                                                  Existing existing) {
   namespace fs = std::filesystem;
-  const std::string fix = "choose a writable folder with -o/--output or output.folder";
+  const std::string fix = "choose a writable folder with -o/--out or output.folder";
   std::error_code ec;
   const fs::path resolved = fs::weakly_canonical(fs::absolute(folder, ec), ec);
   if (!ec && resolved == resolved.root_path())
@@ -268,7 +268,7 @@ std::unique_ptr<io::FolderLock> claim_new_folder(const std::filesystem::path& fo
       if (entry.path().filename() != io::folder_lock_name)
         refuse(fmt::format("holds files that rupture run did not write (e.g. {})",
                            entry.path().filename().string()),
-               "give an empty or new folder with -o/--output or output.folder");
+               "give an empty or new folder with -o/--out or output.folder");
   } else if (!has_ended(record) && !list_checkpoints(folder).empty()) {
     refuse("holds the checkpoints of an unfinished run",
            fmt::format("continue it with `rupture run --resume {}`, or remove {} to start over",
@@ -278,7 +278,7 @@ std::unique_ptr<io::FolderLock> claim_new_folder(const std::filesystem::path& fo
     refuse(has_ended(record) || status == "failed"
                ? fmt::format("holds a {} run ({}), which is kept", status, record.value("stop_reason", ""))
                : "holds a run that was stopped before its first checkpoint, which is kept",
-           "give --overwrite to replace it, or choose another folder with -o/--output");
+           "give --overwrite to replace it, or choose another folder with -o/--out");
   } else {
     for (const auto& name : run_outputs) fs::remove_all(folder / name, ec);
   }
@@ -392,7 +392,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     io::write_json_atomically(folder / "run.json", report);
   } catch (const RunError& e) {
     throw InputError(folder.string(), fmt::format("is not writable ({})", e.what()),
-                     "choose a writable folder with -o/--output or output.folder");
+                     "choose a writable folder with -o/--out or output.folder");
   }
   if (resume == nullptr) {
     // The header names the command that started the run; a resume keeps it, so the files of an

@@ -119,14 +119,31 @@ TEST(AnalyzeCli, MultiPeakedCurveIsRejectedWithExitCode4) {
   EXPECT_NE(j["rejection"].get<std::string>().find("several force maxima"), std::string::npos);
 }
 
+// -o -: analysis.json on standard output (the whole of it), the text summary on stderr.
+TEST(AnalyzeCli, DashWritesTheDocumentToStdout) {
+  TempDir dir;
+  write_curve(dir / "curve.csv", testing::power_law_curve(2.0, 2001), "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("analyze " + quoted(dir / "curve.csv") + " -o -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["tool"], "rupture analyze");
+  EXPECT_TRUE(j["accepted"].get<bool>());
+  EXPECT_NE(r.err.find("wrote the document to standard output"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "analysis.json"));
+}
+
 TEST(MonitorCli, WarnsFromStdinBeforeCriticalStrain) {
   TempDir dir;
   write_curve(dir / "curve.csv", testing::power_law_curve(2.0, 2001), "strain[1],force[1],elastic_energy[1]");
-  const auto r = run_rupture("monitor --json " + quoted(dir / "monitor.json"), (dir / "curve.csv").string());
+  const auto r = run_rupture("monitor", (dir / "curve.csv").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("WARNING at strain"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("x_c prediction held"), std::string::npos) << r.out;
-  const auto j = nlohmann::json::parse(slurp(dir / "monitor.json"));
+  // --json: the same outcome as one JSON document on stdout, the live warning on stderr.
+  const auto as_json = run_rupture("monitor --json", (dir / "curve.csv").string());
+  ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
+  EXPECT_NE(as_json.err.find("WARNING at strain"), std::string::npos) << as_json.err;
+  const auto j = nlohmann::json::parse(as_json.out);
   EXPECT_LT(j["warning"]["strain"].get<double>(), std::pow(0.25, 1.0 / 3.0));
   EXPECT_TRUE(j["x_c_held"].get<bool>());
   EXPECT_GT(j["lead"].get<double>(), 0.0);
@@ -255,9 +272,9 @@ TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
     EXPECT_NEAR(j["delta_x"]["value"].get<double>(), expected.delta_x, 0.05 * expected.delta_x) << alpha;
     EXPECT_NEAR(j["A_r"]["value"].get<double>(), expected.A_r, 0.05 * expected.A_r) << alpha;
     // The monitor replayed on the same file warns before x_c.
-    const auto m = run_rupture("monitor " + quoted(curve) + " --json " + quoted(dir / "monitor.json"));
+    const auto m = run_rupture("monitor " + quoted(curve) + " --json");
     ASSERT_EQ(m.exit_code, 0) << m.err;
-    const auto w = nlohmann::json::parse(slurp(dir / "monitor.json"));
+    const auto w = nlohmann::json::parse(m.out);
     ASSERT_FALSE(w["warning"].is_null()) << m.out;
     EXPECT_LT(w["warning"]["strain"].get<double>(), w["x_c_observed"].get<double>()) << alpha;
   }

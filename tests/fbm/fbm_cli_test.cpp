@@ -84,11 +84,21 @@ TEST(FbmCli, CurvesAreLoadingCurvesWithUnitsAndBalancedWork) {
   EXPECT_NEAR(work, E.back() + D.back(), 1e-6);
 }
 
+// "-" is standard output: the same CSV a file would get, and nothing written beside it.
+TEST(FbmCli, CurvesToStdoutEqualTheFile) {
+  TempDir dir;
+  const auto file = run_rupture("fbm curves --dist uniform --points 11 -o '" + (dir / "c.csv").string() + "'");
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  const auto piped = run_rupture("fbm curves --dist uniform --points 11 -o -");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  EXPECT_EQ(piped.out, testing::slurp(dir / "c.csv"));
+}
+
 TEST(FbmCli, SimulateWritesCurveBurstsAndSummary) {
   TempDir dir;
   const auto out = dir / "run.csv";
   const auto r = run_rupture("fbm simulate --fibers 100000 --seed 5 --control load --points 501 --out '" +
-                             out.string() + "' --json '" + (dir / "run.json").string() + "'");
+                             out.string() + "' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto curve = io::read_csv(out);
   EXPECT_EQ(curve.rows(), 501u);
@@ -97,7 +107,7 @@ TEST(FbmCli, SimulateWritesCurveBurstsAndSummary) {
     EXPECT_TRUE(curve.find(column).has_value()) << column;
   const auto bursts = io::read_csv(dir / "run_bursts.csv");
   EXPECT_EQ(bursts.column("size").front(), 1.0);
-  const auto summary = nlohmann::json::parse(testing::slurp(dir / "run.json"));
+  const auto summary = nlohmann::json::parse(r.out);  // --json: the summary on stdout, nothing else
   EXPECT_EQ(summary["inputs"]["fibers"], 100000);
   EXPECT_EQ(summary["inputs"]["seed"], 5);
   EXPECT_TRUE(summary["x_m"].is_null());
