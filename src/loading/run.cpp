@@ -218,7 +218,8 @@ constexpr double max_step_move = 0.5;  // 1, of the particle's radius
 // the files --overwrite removes (and nothing else, so a user's own files beside them survive).
 const std::vector<std::string> run_outputs = {"run.json",      "curves.csv",    "breaks.csv",
                                               "snapshots.pvd", "analysis.json", "report.html",
-                                              "checkpoints",   "snapshots",     "figures"};
+                                              "checkpoints",   "snapshots",     "figures",
+                                              "run.log"};
 
 // A folder's run.json, if rupture run wrote one there (null otherwise, also when unreadable).
 nlohmann::json read_run_record(const std::filesystem::path& folder) {
@@ -507,7 +508,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
                60.0 * config.checkpoint_minutes;
   };
 
-  Progress progress("run", double(plan.estimated_steps));
+  // run.log: a line a minute and one at the end (steps, rate, ETA, strain, breaks), for batch jobs.
+  Progress progress("run", double(plan.estimated_steps), folder / "run.log");
   UnionFind sets;
   LoadFreeWatch load_free(config.load_free_fraction, config.load_free_strain, loop.load_free);
   bool stable = true;
@@ -598,7 +600,11 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
     }
     throw RunError(message);
   }
-  progress.finish();
+  progress.finish(double(system.steps_done()),
+                  fmt::format("strain {:.3f} %, {} broken, stopped: {}", strain_now(),
+                              system.bond_count() - system.intact_bonds(),
+                              summary.stop_reason.empty() ? std::string(stable ? "interrupted" : "unstable")
+                                                          : summary.stop_reason));
 
   summary.steps = system.steps_done();
   summary.strain = strain_now();

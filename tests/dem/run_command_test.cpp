@@ -1,6 +1,7 @@
 // `rupture run` and `rupture check` end to end: configs rejected with clear messages, an unstable
 // run stopped with a diagnosis, identical bytes for any thread count, runs to separation.
 #include <gmock/gmock.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -105,6 +106,10 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   EXPECT_TRUE(curves.find("force_top").has_value() && curves.find("elastic_energy").has_value());
   const auto breaks = io::read_csv(dir / "out" / "breaks.csv");
   EXPECT_GE(breaks.rows(), 8u) << "at least one bond per column";
+  // run.log ends with the run's last line: steps, strain, breaks and why it stopped.
+  const std::string log = slurp(dir / "out" / "run.log");
+  EXPECT_NE(log.find(fmt::format("run: {}/", report["steps"].get<std::uint64_t>())), std::string::npos) << log;
+  EXPECT_NE(log.find(fmt::format("{} broken, stopped: separated (end)", breaks.rows())), std::string::npos) << log;
 }
 
 // One switch keeps a run going past separation: it stops at max_strain, with the separation still
