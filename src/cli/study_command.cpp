@@ -107,6 +107,36 @@ std::string command_line(const StudyOptions& o) {
   return command;
 }
 
+// The scan of the study, planned (every point's config checked) before anything runs; with --no-scan
+// none, and an earlier study's scan is removed so that it cannot enter this report.
+std::optional<scan::Plan> plan_scan(const StudyOptions& o, const std::filesystem::path& out, const Sample& sample) {
+  if (o.no_scan) {
+    std::filesystem::remove_all(out / "scan");
+    std::filesystem::remove(out / "scan.toml");
+    return std::nullopt;
+  }
+  const std::filesystem::path scan_file = o.scan_config.empty() ? out / "scan.toml" : std::filesystem::path(o.scan_config);
+  if (o.scan_config.empty()) io::write_file_atomically(scan_file, default_scan_config);
+  scan::ScanConfig config = scan::load_scan_config(scan_file);
+  config.output = out / "scan";
+  config.set.insert(config.set.end(), o.overrides.begin(), o.overrides.end());  // --set reaches every point
+  return scan::make_plan(config, sample);
+}
+
+// The last line: where the report is and what the run's precursor was.
+void print_outcome(const std::string& html, const analysis::AnalysisResult& r) {
+  if (r.x_p && r.x_c && r.delay) {
+    fmt::print(
+        "report: {}; precursor: x_p = {:.3g} %, x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
+        "[{:.2g}, {:.2g}] %): {}{}\n",
+        html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
+        analysis::precursor_order(r.delay->ci95_low, r.delay->ci95_high),
+        r.accepted ? "" : "; analysis rejected: " + r.rejection);
+  } else {
+    fmt::print("report: {}; no precursor found ({})\n", html, r.accepted ? "no peak" : r.rejection);
+  }
+}
+
 }  // namespace
 
 void add_study_command(CLI::App& app, int& exit_code) {
@@ -145,19 +175,7 @@ void add_study_command(CLI::App& app, int& exit_code) {
       const auto config = loading::load_config(config_file, overrides);
       const Sample sample = loading::resolve_sample(config);
 
-      // The scan is planned (every point's config checked) before anything runs.
-      std::optional<scan::Plan> plan;
-      if (!o->no_scan) {
-        const fs::path scan_file = o->scan_config.empty() ? out / "scan.toml" : fs::path(o->scan_config);
-        if (o->scan_config.empty()) io::write_file_atomically(scan_file, default_scan_config);
-        scan::ScanConfig scan_config = scan::load_scan_config(scan_file);
-        scan_config.output = out / "scan";
-        scan_config.set.insert(scan_config.set.end(), o->overrides.begin(), o->overrides.end());
-        plan = scan::make_plan(scan_config, sample);
-      } else {
-        fs::remove_all(out / "scan");  // an earlier study's scan would otherwise enter this report
-        fs::remove(out / "scan.toml");
-      }
+      const std::optional<scan::Plan> plan = plan_scan(*o, out, sample);
 
       announce("sample");
       save_sample(sample, out / "sample.rsample");
@@ -192,19 +210,9 @@ void add_study_command(CLI::App& app, int& exit_code) {
 
     announce("figures and report");
     const auto report = report::write_report(out, "rupture report " + out.string());
-    fmt::print("      {} figures in {} and {}\n", report.figures, (out / "run" / "figures").string(),
-               (out / "scan" / "figures").string());
-    const std::string html = fs::absolute(report.html).lexically_normal().string();
-    if (r.x_p && r.x_c && r.delay) {
-      fmt::print(
-          "report: {}; precursor: x_p = {:.3g} %, x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
-          "[{:.2g}, {:.2g}] %): {}{}\n",
-          html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
-          analysis::precursor_order(r.delay->ci95_low, r.delay->ci95_high),
-          r.accepted ? "" : "; analysis rejected: " + r.rejection);
-    } else {
-      fmt::print("report: {}; no precursor found ({})\n", html, r.accepted ? "no peak" : r.rejection);
-    }
+    fmt::print("      {} figures in {}{}\n", report.figures, (out / "run" / "figures").string(),
+               o->no_scan ? "" : " and " + (out / "scan" / "figures").string());
+    print_outcome(fs::absolute(report.html).lexically_normal().string(), r);
     if (!r.accepted) exit_code = exit_rejected;
   });
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -388,8 +389,7 @@ std::string monitor_section(const json& run) {
 }
 
 // The paper's claims checked against a scan (scan/claims), as the report's table.
-std::string claims_section(const fs::path& scan_folder) {
-  const auto claims = scan::check_claims(scan::read_results(scan_folder / "results.csv"));
+std::string claims_section(const scan::Claims& claims) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& claim : claims.rows) rows.push_back({io::escape_markup(claim.paper), io::escape_markup(claim.here)});
   return "<h2>The paper's claims against this scan</h2>\n<p>" + io::escape_markup(claims.counts()) +
@@ -448,7 +448,7 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
       "<p class=\"summary\">{} points in <code>results.csv</code>, {} separated and accepted by the "
       "analysis (figures 16 and 17 show those).</p>\n",
       claims.points, claims.accepted);
-  body += figures_section(drawn, folder, count) + claims_section(folder);
+  body += figures_section(drawn, folder, count) + claims_section(claims);
   if (fs::exists(folder / "scan.json")) {
     json scan = read_json(folder / "scan.json");
     scan.erase("points");  // one entry per point: the results table below says it better
@@ -481,26 +481,32 @@ std::string study_report(const fs::path& folder, const std::string& command, std
   std::vector<figures::Drawn> first, rest;
   for (const auto& f : run_drawn) (f.name == "loading" ? first : rest).push_back(f);
   for (const auto& f : scan_drawn) (f.name == "delay_vs_critical" ? first : rest).push_back(f);
+  // results.csv read once, for the summary, the claims and the table.
+  std::optional<scan::ResultsTable> results;
+  std::optional<scan::Claims> claims;
+  if (have_scan) {
+    results = scan::read_results(scan_folder / "results.csv");
+    claims = scan::check_claims(*results);
+  }
 
   std::string body = "<h1>Study: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
   body += provenance(folder, command) + run_summary(analysis);
   if (have_scan) {
-    const auto claims = scan::check_claims(scan::read_results(scan_folder / "results.csv"));
     body += fmt::format(
         "<p class=\"summary\">The scan of the same tissue (<code>scan/</code>): {} points, {} accepted; "
         "{}.</p>\n",
-        claims.points, claims.accepted, io::escape_markup(claims.rows.front().here));
+        claims->points, claims->accepted, io::escape_markup(claims->rows.front().here));
   } else {
     body += "<p>No scan in this study (<code>--no-scan</code>): figures 15-17 need one.</p>\n";
   }
   body += figures_section(first, folder, count, "The run's loading curves and the scan's delay", true);
   body += figures_section(rest, folder, count, "More figures");
-  if (have_scan) body += claims_section(scan_folder);
+  if (have_scan) body += claims_section(*claims);
   body += "<h2>The run</h2>\n" + analysis_section(analysis) + monitor_section(run);
   if (have_scan) {
     body += "<h2>The scan's points</h2>\n<p>From <code>scan/results.csv</code> (every column there; "
             "<code>rupture report scan</code> shows them all).</p>\n" +
-            results_table(scan::read_results(scan_folder / "results.csv"),
+            results_table(*results,
                           {"k_n", "b_d", "status", "steps", "x_c", "x_p", "delta_x", "delta_x_lo95", "delta_x_hi95",
                            "A_r", "alpha", "class", "accepted", "why", "wall_time"});
   }
