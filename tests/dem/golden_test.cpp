@@ -1,0 +1,77 @@
+// The engine pinned bit for bit: short runs of the reduced tissue whose final state hash, plate
+// work and released energy are written down here. A change that moves any of them changes the
+// physics' floating-point path (summation order, a formula rewritten, a law changed); such a change
+// must say so and re-pin these values with the reason in its commit. Each case also runs on one and
+// two threads: the pinned value holds for both.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+
+#include "dem/system.hpp"
+#include "loading/ramp.hpp"
+#include "sample/presets.hpp"
+
+namespace rupture::dem {
+namespace {
+
+struct Pinned {
+  std::uint64_t state_hash;
+  std::uint64_t plate_work_bits;
+  std::uint64_t released_bits;
+  std::size_t intact_bonds;
+};
+
+const Sample& small_tissue() {
+  static const Sample sample = make_preset("tissue-small", 1);
+  return sample;
+}
+
+// Pulls the reduced tissue `steps` steps at `speed` (mm/s, ramped over the first 200 steps).
+Pinned pull(const Params& params, double speed, int steps, int threads) {
+  omp_set_num_threads(threads);
+  System system(small_tissue(), params);
+  const double dt = 0.4 * system.critical_dt();
+  const loading::SpeedRamp ramp{speed, 200 * dt};
+  for (int s = 1; s <= steps; ++s) system.step(dt, ramp.at(double(s) * dt));
+  return {system.state_hash(), std::bit_cast<std::uint64_t>(system.plate_work()),
+          std::bit_cast<std::uint64_t>(system.released_energy()), system.intact_bonds()};
+}
+
+void expect_pinned(const Params& params, double speed, int steps, const Pinned& expected) {
+  for (const int threads : {1, 2}) {
+    const Pinned got = pull(params, speed, steps, threads);
+    std::printf("pinned {0x%016llxull, 0x%016llxull, 0x%016llxull, %zu} on %d threads\n",
+                static_cast<unsigned long long>(got.state_hash),
+                static_cast<unsigned long long>(got.plate_work_bits),
+                static_cast<unsigned long long>(got.released_bits), got.intact_bonds, threads);
+    EXPECT_EQ(got.state_hash, expected.state_hash) << threads << " threads";
+    EXPECT_EQ(got.plate_work_bits, expected.plate_work_bits) << threads << " threads";
+    EXPECT_EQ(got.released_bits, expected.released_bits) << threads << " threads";
+    EXPECT_EQ(got.intact_bonds, expected.intact_bonds) << threads << " threads";
+  }
+}
+
+// Rigid glue, fast pull through the first breaks and into fragmentation (contacts, rebuilds, breaks).
+TEST(Golden, RigidFastPullThroughFailure) {
+  Params p;
+  p.break_distance = 0.005;
+  p.glue_mode = GlueMode::rigid;
+  expect_pinned(p, 5000.0, 3000, {0x517e749ed207d075ull, 0x403b567081a68166ull, 0x4030aeea7b56d249ull, 11392});
+}
+
+// Spring glue with viscous damping and ESyS's relative rule with scaled stiffness.
+TEST(Golden, SpringGlueDampedRelativeRule) {
+  Params p;
+  p.bond_stiffness = 4e3;
+  p.scale_stiffness = true;
+  p.break_rule = BreakRule::relative;
+  p.break_distance = 0.01;
+  p.damping = 2e4;
+  expect_pinned(p, 5000.0, 2500, {0xaae3f70678deebddull, 0x40521cac86165739ull, 0x4041b2198c7a5858ull, 11236});
+}
+
+}  // namespace
+}  // namespace rupture::dem
