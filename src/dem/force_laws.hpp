@@ -19,6 +19,18 @@ struct HookeBond {
   double force_over_r(double r) const { return k * (r - r0) / r; }
 };
 
+// A bond that holds up to a stretch `limit` (mm) and gives no force past it: at that configuration
+// it breaks (dem/breaks removes it after the force pass that finds it). At a non-finite distance it
+// neither holds nor breaks: no force and no break, and the step's stability check stops the run.
+struct BreakableBond {
+  HookeBond law;
+  double limit;  // mm
+
+  bool holds(double r) const { return law.stretch(r) <= limit; }
+  bool breaks(double r) const { return law.stretch(r) > limit; }
+  double force_over_r(double r) const { return holds(r) ? law.force_over_r(r) : 0.0; }
+};
+
 // Repulsion between overlapping unbonded spheres: overlap h = r_i + r_j - r > 0,
 // E = k/2 h^2, F_self = -k h d/r; nothing (no attraction) when h <= 0.
 struct LinearContact {

@@ -91,16 +91,6 @@ void write_snapshot(const dem::System& system, const Sample& sample, const std::
   io::write_vtp(path, data);
 }
 
-double mean_rest_length(const Sample& sample) {
-  double sum = 0.0;
-  for (const auto& b : sample.bonds) sum += b.rest_length;
-  return sample.bonds.empty() ? 0.0 : sum / double(sample.bonds.size());
-}
-
-}  // namespace
-
-namespace {
-
 Sample build_sample(const RunConfig& config) {
   if (!config.sample_lattice.empty()) {
     const auto& n = config.lattice_cells;
@@ -153,18 +143,10 @@ RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sampl
   }
   plan.ramp_time = double(config.ramp_steps) * plan.dt;
   plan.plate_separation = system.initial_plate_separation();
-  const double r0 = mean_rest_length(sample);
   const dem::Params params = config.dem_params(sample.density);
-  double mean_mass = 0.0;
-  for (double r : sample.radius)
-    mean_mass += units::density_from_g_per_mm3(params.density) * units::sphere_volume(r);
-  mean_mass /= double(std::max<std::size_t>(1, sample.size()));
-  const double k = params.scale_stiffness ? params.bond_stiffness * r0 / 4.0 : params.bond_stiffness;
-  plan.wave_speed = r0 * std::sqrt(k / mean_mass);
+  plan.wave_speed = dem::wave_speed(sample, params);
   plan.speed_ratio = config.speed / plan.wave_speed;
-  plan.first_break_strain =
-      100.0 *
-      (params.break_rule == dem::BreakRule::absolute ? config.break_distance / r0 : config.break_distance);
+  plan.first_break_strain = 100.0 * dem::first_break_strain(sample, params);
   // Steps to reach max_strain: the ramp covers speed * T / 2, then constant speed.
   const double target = plan.plate_separation * config.max_strain / 100.0;
   const double ramp_distance = 0.5 * config.speed * plan.ramp_time;

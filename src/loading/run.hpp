@@ -31,7 +31,7 @@ struct RunPlan {
   double plate_separation = 0.0;      // mm, l0
   double wave_speed = 0.0;            // mm/s, longitudinal wave speed of a bond chain, r0 sqrt(k/m)
   double speed_ratio = 0.0;           // 1, plate speed / wave speed
-  double first_break_strain = 0.0;    // %, affine estimate of the first break
+  double first_break_strain = 0.0;    // %, dem::first_break_strain: affine estimate of the first break
   std::uint64_t estimated_steps = 0;  // to the max-strain or max-steps stop, whichever is first
   double estimated_seconds = 0.0;     // wall time at the throughput measured in docs/performance.md
   std::size_t memory_bytes = 0;

@@ -354,18 +354,12 @@ void check_dt(const Plan& plan, const StepScale& scale, double dt, const std::fi
 
 std::string fingerprint_text(std::uint64_t fingerprint) { return fmt::format("{:016x}", fingerprint); }
 
-double mean_rest_length(const Sample& sample) {
-  double sum = 0.0;
-  for (const auto& bond : sample.bonds) sum += bond.rest_length;
-  return sample.bonds.empty() ? 0.0 : sum / double(sample.bonds.size());
-}
-
 std::string point_name(double k_n, double b_d) { return fmt::format("kn_{}_bd_{}", k_n, b_d); }
 
 
 Plan make_plan(const ScanConfig& config, const Sample& sample) {
   const loading::RunConfig base = base_config(config);
-  const double rest_length = mean_rest_length(sample);
+  const double rest_length = dem::mean_rest_length(sample);
   const bool needs_steps = config.ramp == "strain" || config.interval == "scaled" || config.dt.has_value();
   const StepScale scale = needs_steps ? step_scale(base, sample) : StepScale{};
   Plan plan;
@@ -396,7 +390,11 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
     // "strain" instead ends the ramp at a fraction of the first-break strain whatever k_n is, so the
     // plate reaches full speed before anything breaks (a ramp in steps is long in strain at small k_n,
     // where dt is large); the wave transit time is the same number of steps at every k_n.
-    const double first_break = 100.0 * (base.break_rule == "relative" ? b : b / rest_length);  // %
+    // The rules measure strain in the nominal break strain (b_d / mean r0, or b), a scale that every
+    // point shares; dem::first_break_strain, the affine prediction, lies 30-40 % below it.
+    dem::Params rule = base.dem_params(sample.density);
+    rule.break_distance = b;
+    const double first_break = 100.0 * dem::nominal_break_strain(rule, rest_length);  // %
     p.ramp_steps = base.ramp_steps;
     if (config.ramp == "scaled" || config.ramp == "strain") {
       // The ramp v/2 (1 - cos) covers half the strain that full speed would in the same steps.

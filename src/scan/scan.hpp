@@ -80,9 +80,6 @@ struct Plan {
 
 std::string point_name(double k_n, double b_d);
 
-// Mean bond rest length (mm): turns b_d into the strain at which bonds start to break.
-double mean_rest_length(const Sample& sample);
-
 // Builds the plan for `sample` (the base config's): every point's config is loaded (and so checked)
 // now, before anything runs, and a given [rules] dt is checked against every point's stability
 // limit. Throws InputError when the output folder is a file.

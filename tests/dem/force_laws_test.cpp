@@ -44,5 +44,19 @@ TEST(ForceLaws, GlueSpringForceIsMinusEnergyGradient) {
   EXPECT_DOUBLE_EQ(glue.force(0.0), 0.0);
 }
 
+TEST(ForceLaws, BreakableBondActsUpToItsLimitOnly) {
+  const BreakableBond bond{{1e3, 0.8}, 0.01};
+  EXPECT_TRUE(bond.holds(0.8099));
+  EXPECT_FALSE(bond.breaks(0.8099));
+  EXPECT_EQ(bond.force_over_r(0.805), bond.law.force_over_r(0.805)) << "the Hooke law while it holds";
+  EXPECT_FALSE(bond.holds(0.8101));
+  EXPECT_TRUE(bond.breaks(0.8101));
+  EXPECT_EQ(bond.force_over_r(0.8101), 0.0) << "no force in the pass that finds it past its limit";
+  const double nan = std::nan("");
+  EXPECT_FALSE(bond.holds(nan));
+  EXPECT_FALSE(bond.breaks(nan)) << "a non-finite state is the stability check's to report";
+  EXPECT_EQ(bond.force_over_r(nan), 0.0);
+}
+
 }  // namespace
 }  // namespace rupture::dem

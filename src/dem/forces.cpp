@@ -1,0 +1,104 @@
+#include "dem/forces.hpp"
+
+#include <omp.h>
+
+#include <cmath>
+
+#include "dem/force_laws.hpp"
+#include "dem/integrator.hpp"
+
+namespace rupture::dem {
+
+namespace {
+
+template <bool damped>
+void force_pass_impl(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
+                     const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel) {
+  HotParticles& p = particles.hot;
+  ColdParticles& cold = particles.cold;
+  const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
+  breaks.prepare(omp_get_max_threads());
+  const double kc = params.contact_stiffness;
+  const GlueSpring glue{params.glue_mode == GlueMode::spring ? params.glue_stiffness : 0.0};
+  const bool rigid = params.glue_mode == GlueMode::rigid;
+  const double half_dt = step.half_dt, damping = params.damping;
+  const double* __restrict x = p.x.data();
+  const double* __restrict y = p.y.data();
+  const double* __restrict z = p.z.data();
+  const double* __restrict rad = p.radius.data();
+  const std::uint32_t* __restrict link_other = bonds.link_other.data();
+  const double* __restrict link_r0 = bonds.link_r0.data();
+  const double* __restrict link_k = bonds.link_k.data();
+  const double* __restrict link_limit = bonds.link_limit.data();
+  const std::uint32_t* __restrict link_start = bonds.link_start.data();
+  const std::uint32_t* __restrict link_count = bonds.link_count.data();
+  const std::uint32_t* __restrict nb_start = neighbours.start.data();
+  const std::uint32_t* __restrict nb_count = neighbours.count.data();
+  const std::uint32_t* __restrict nb = neighbours.list.data();
+#pragma omp parallel if (parallel)
+  {
+    auto& flags = breaks.flagged[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+    for (std::uint32_t a = 0; a < n; ++a) {
+      const double xa = x[a], ya = y[a], za = z[a];
+      double fx = 0.0, fy = 0.0, fz = 0.0;
+      const std::uint32_t begin = link_start[a], end = begin + link_count[a];
+      int over = 0;
+      // Branch-free so that it vectorises; a bond over its limit is flagged below.
+#pragma omp simd reduction(+ : fx, fy, fz) reduction(| : over)
+      for (std::uint32_t l = begin; l < end; ++l) {
+        const std::uint32_t j = link_other[l];
+        const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const BreakableBond bond{{link_k[l], link_r0[l]}, link_limit[l]};
+        const double c = bond.force_over_r(r);
+        fx += c * dx;
+        fy += c * dy;
+        fz += c * dz;
+        over |= int(!bond.holds(r));
+      }
+      if (over) [[unlikely]] {
+        for (std::uint32_t l = begin; l < end; ++l) {
+          const std::uint32_t j = link_other[l];
+          const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
+          const BreakableBond bond{{link_k[l], link_r0[l]}, link_limit[l]};
+          if (j > a && bond.breaks(std::sqrt(dx * dx + dy * dy + dz * dz))) flags.push_back(bonds.link_bond[l]);
+        }
+      }
+      const double ra = rad[a];
+#pragma omp simd reduction(+ : fx, fy, fz)
+      for (std::uint32_t q = nb_start[a]; q < nb_start[a] + nb_count[a]; ++q) {
+        const std::uint32_t b = nb[q];
+        const double dx = x[b] - xa, dy = y[b] - ya, dz = z[b] - za;
+        const double c = LinearContact{kc, ra + rad[b]}.force_over_r(std::sqrt(dx * dx + dy * dy + dz * dz));
+        fx += c * dx;
+        fy += c * dy;
+        fz += c * dz;
+      }
+      const std::uint8_t plate = p.plate[a];
+      if (plate != plate_none) {
+        fx += glue.force(xa - cold.ax[a]);
+        fy += glue.force(ya - cold.ay[a] - step.plate_u[plate]);
+        fz += glue.force(za - cold.az[a]);
+      }
+      p.fx[a] = fx;
+      p.fy[a] = fy;
+      p.fz[a] = fz;
+      if (plate != plate_none && rigid) continue;
+      half_kick<damped>(p.vx[a], p.vy[a], p.vz[a], fx, fy, fz, half_dt, p.inv_mass[a], cold.mass[a], damping,
+                        cold.damped[a]);
+    }
+  }
+}
+
+}  // namespace
+
+void force_pass(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
+                const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel) {
+  if (params.damping > 0.0)
+    force_pass_impl<true>(step, particles, bonds, neighbours, breaks, params, parallel);
+  else
+    force_pass_impl<false>(step, particles, bonds, neighbours, breaks, params, parallel);
+}
+
+}  // namespace rupture::dem

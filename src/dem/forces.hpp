@@ -1,0 +1,19 @@
+// dem/forces: the force pass, the step's hot loop. Each particle gathers its bond, contact and glue
+// forces in a fixed order through the laws of dem/force_laws, flags its bonds past their limit
+// (a bond over its limit gives no force in the pass that finds it: it breaks at this configuration)
+// and finishes its second half-kick, so the particles are swept once.
+// Owns: the loop. Not: the laws (dem/force_laws) or applying the breaks (dem/breaks).
+#pragma once
+
+#include "dem/bonds.hpp"
+#include "dem/breaks.hpp"
+#include "dem/neighbours.hpp"
+#include "dem/particles.hpp"
+#include "dem/step_context.hpp"
+
+namespace rupture::dem {
+
+void force_pass(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
+                const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel);
+
+}  // namespace rupture::dem
