@@ -1,8 +1,11 @@
 // cli/bench_command: `rupture bench`, whole DEM steps timed on a named sample (intact and with a
 // fraction of its bonds broken) for each thread count: particle-steps per second, the split over
 // the step's stages, bytes per particle and the state hash (equal for every thread count).
+// `rupture bench --run CONFIG` times a whole run instead, end to end (outputs, separation checks,
+// rebuild storms after failure included), in a temporary folder removed afterwards.
 #include <fmt/format.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <ctime>
@@ -13,9 +16,13 @@
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "core/hash.hpp"
 #include "core/random.hpp"
 #include "dem/system.hpp"
+#include "io/atomic_file.hpp"
+#include "loading/config.hpp"
 #include "loading/ramp.hpp"
+#include "loading/run.hpp"
 #include "rupture/version.hpp"
 #include "sample/formats.hpp"
 #include "sample/presets.hpp"
@@ -31,6 +38,8 @@ struct BenchOptions {
   long steps = 1000;
   std::uint64_t seed = 1;
   bool json = false;
+  std::string run;  // a run config to time end to end instead
+  std::vector<std::string> overrides;
 };
 
 struct BenchResult {
@@ -115,6 +124,71 @@ nlohmann::json to_json(const BenchResult& r, const std::string& sample) {
           {"state_hash", fmt::format("{:016x}", r.hash)}};
 }
 
+// A whole run of `config_file` on `threads` threads in a temporary folder: what run.json reports
+// (steps, wall time, stages, rebuilds) and a hash of curves.csv and breaks.csv without their comment
+// lines, equal for every thread count.
+nlohmann::json bench_run(const BenchOptions& options, int threads) {
+  loading::RunConfig config = loading::load_config(options.run, options.overrides);
+  config.threads = threads;
+  const Sample sample = loading::resolve_sample(config);
+  const auto folder = std::filesystem::temp_directory_path() /
+                      fmt::format("rupture-bench-run-{}-{}", ::getpid(), threads);
+  std::filesystem::remove_all(folder);
+  loading::RunOptions run_options;
+  run_options.echo_monitor = false;
+  const double cpu_start = process_cpu_seconds();
+  const loading::RunSummary summary =
+      loading::run_simulation(config, sample, folder, "rupture bench --run " + options.run, run_options);
+  const double cpu_s = process_cpu_seconds() - cpu_start;
+  const auto report = nlohmann::json::parse(io::read_file(folder / "run.json"));
+  Fnv1a outputs;
+  for (const char* name : {"curves.csv", "breaks.csv"}) {
+    const std::string text = io::read_file(folder / name);
+    std::size_t line = 0;
+    while (line < text.size()) {
+      const std::size_t end = std::min(text.find('\n', line), text.size());
+      if (text[line] != '#') outputs.add(text.data() + line, end - line);
+      line = end + 1;
+    }
+  }
+  std::filesystem::remove_all(folder);
+  return {{"config", options.run},
+          {"particles", sample.size()},
+          {"bonds", sample.bonds.size()},
+          {"threads", threads},
+          {"steps", summary.steps},
+          {"stop_reason", summary.stop_reason},
+          {"broken_bonds", summary.broken_bonds},
+          {"wall_s", report["wall_s"]},
+          {"cpu_s", cpu_s},
+          {"particle_steps_per_s", report["particle_steps_per_s"]},
+          {"stage_seconds", report["stage_seconds"]},
+          {"neighbour_rebuilds", report["neighbour_rebuilds"]},
+          {"outputs_hash", fmt::format("{:016x}", outputs.hash)}};
+}
+
+void print_run_benches(const BenchOptions& options) {
+  nlohmann::json results = nlohmann::json::array();
+  if (!options.json)
+    fmt::print("rupture {} bench --run {}\n{:>7} {:>9} {:>9} {:>8} {:>12} {:>7} {:>7} {:>7} {:>8} {:>16}\n",
+               version_string, options.run, "threads", "steps", "wall[s]", "cpu[s]", "p-steps/s", "forces",
+               "integr", "neighb", "rebuilds", "outputs hash");
+  for (const int threads : options.threads) {
+    const nlohmann::json r = bench_run(options, threads);
+    results.push_back(r);
+    if (options.json) continue;
+    const double wall = r["wall_s"].get<double>();
+    const auto& stages = r["stage_seconds"];
+    fmt::print("{:>7} {:>9} {:>9.3f} {:>8.3f} {:>12.4g} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} {:>16}\n", threads,
+               r["steps"].get<std::uint64_t>(), wall, r["cpu_s"].get<double>(),
+               r["particle_steps_per_s"].get<double>(), 100 * stages["forces"].get<double>() / wall,
+               100 * stages["integrate"].get<double>() / wall, 100 * stages["neighbours"].get<double>() / wall,
+               r["neighbour_rebuilds"].get<std::uint64_t>(), r["outputs_hash"].get<std::string>());
+  }
+  if (options.json)
+    fmt::print("{}\n", nlohmann::json{{"tool", "rupture bench --run"}, {"version", version_string}, {"results", results}}.dump(2));
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, int&) {
@@ -132,12 +206,16 @@ void add_bench_command(CLI::App& app, int&) {
       ->capture_default_str();
   bench->add_option("--seed", options->seed, "preset seed and broken-bond selection")->capture_default_str();
   bench->add_flag("--json", options->json, "print JSON instead of a table");
+  bench->add_option("--run", options->run,
+                    "time this run config end to end instead (outputs in a temporary folder, removed)");
+  bench->add_option("--set", options->overrides, "with --run: override a config key (repeatable)");
   bench->callback([options] {
     for (int t : options->threads)
       if (t < 1) throw InputError("--threads", fmt::format("{} is not a thread count", t), "use 1 or more");
     for (double f : options->broken)
       if (!(f >= 0.0 && f < 1.0))
         throw InputError("--broken", fmt::format("{} is not a fraction in [0, 1)", f), "use e.g. 0.5");
+    if (!options->run.empty()) return print_run_benches(*options);
     const Sample sample = bench_sample(*options);
     nlohmann::json results = nlohmann::json::array();
     if (!options->json)
