@@ -2,7 +2,9 @@
 // sample and Params it fixes every later step bit for bit. That includes what only fixes the order of
 // floating-point sums: each particle's link order (breaks permute it), the neighbour list with its
 // slice capacities, and the positions the list was built at (they decide the next rebuild).
-// Constants (masses, anchors, bond constants, storage order) are rebuilt from the sample.
+// Constants (masses, anchors, bond constants, storage order) are rebuilt from the sample. The
+// neighbour list's adaptive skin is not kept: a resumed engine starts at Params::skin, the narrowest,
+// which only makes its next rebuild come sooner (forces do not depend on the skin).
 // Owns: the field list. Not: the file format (loading/checkpoint) or the checks on restore
 // (System::restore_state).
 #pragma once

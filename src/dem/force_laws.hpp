@@ -38,6 +38,7 @@ struct LinearContact {
   double touch;  // mm, r_i + r_j
 
   double overlap(double r) const { return touch - r; }
+  bool touching(double r) const { return r < touch; }
   double energy(double r) const { return r < touch ? 0.5 * k * (touch - r) * (touch - r) : 0.0; }
   double force_over_r(double r) const { return r < touch ? -k * (touch - r) / r : 0.0; }
 };

@@ -65,12 +65,19 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
           if (j > a && bond.breaks(std::sqrt(dx * dx + dy * dy + dz * dz))) flags.push_back(bonds.link_bond[l]);
         }
       }
+      // Touching pairs only, in the slice's sorted order, so that the sum does not depend on which
+      // candidates the list holds (its skin). Most candidates are apart: a squared-distance test
+      // rejects them before the square root (its margin keeps every pair with r < touch).
       const double ra = rad[a];
-#pragma omp simd reduction(+ : fx, fy, fz)
       for (std::uint32_t q = nb_start[a]; q < nb_start[a] + nb_count[a]; ++q) {
         const std::uint32_t b = nb[q];
         const double dx = x[b] - xa, dy = y[b] - ya, dz = z[b] - za;
-        const double c = LinearContact{kc, ra + rad[b]}.force_over_r(std::sqrt(dx * dx + dy * dy + dz * dz));
+        const double r2 = dx * dx + dy * dy + dz * dz;
+        const LinearContact contact{kc, ra + rad[b]};
+        if (!(r2 < contact.touch * contact.touch * (1.0 + 1e-12))) continue;
+        const double r = std::sqrt(r2);
+        if (!contact.touching(r)) continue;
+        const double c = contact.force_over_r(r);
         fx += c * dx;
         fy += c * dy;
         fz += c * dz;

@@ -1,6 +1,7 @@
 #include "dem/integrator.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace rupture::dem {
@@ -19,6 +20,25 @@ inline MoveMax farther(const MoveMax& a, const MoveMax& b) {
 #pragma omp declare reduction(farther : MoveMax : omp_out = farther(omp_out, omp_in)) \
     initializer(omp_priv = MoveMax{-1.0, 0xffffffffu})
 
+// The two largest squared displacements since the list build (a max: the same for any split).
+struct TopTwo {
+  double first = 0.0, second = 0.0;
+  void add(double d2) {
+    if (d2 > first) {
+      second = first;
+      first = d2;
+    } else if (d2 > second) {
+      second = d2;
+    }
+  }
+};
+inline TopTwo merged(TopTwo a, const TopTwo& b) {
+  a.add(b.first);
+  a.add(b.second);
+  return a;
+}
+#pragma omp declare reduction(top_two : TopTwo : omp_out = merged(omp_out, omp_in)) initializer(omp_priv = TopTwo{})
+
 template <bool damped>
 DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, const NeighbourList& list,
                             const Params& params, bool parallel) {
@@ -27,9 +47,9 @@ DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, c
   const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
   const double dt = step.dt, half = step.half_dt, damping = params.damping;
   const bool rigid = params.glue_mode == GlueMode::rigid;
-  double max_d2 = 0.0;
+  TopTwo moved;
   MoveMax mover{-1.0, 0xffffffffu};
-#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(farther : mover) if (parallel)
+#pragma omp parallel for schedule(static) reduction(top_two : moved) reduction(farther : mover) if (parallel)
   for (std::uint32_t a = 0; a < n; ++a) {
     const std::uint8_t plate = p.plate[a];
     if (rigid && plate != plate_none) {
@@ -51,9 +71,13 @@ DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, c
       mover = farther(mover, MoveMax{move2, a});
     }
     const double dx = p.x[a] - list.xb[a], dy = p.y[a] - list.yb[a], dz = p.z[a] - list.zb[a];
-    max_d2 = std::max(max_d2, dx * dx + dy * dy + dz * dz);
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    // A non-finite position counts as an infinite move (the list must be rebuilt; the step's
+    // stability check then reports the state).
+    moved.add(d2 <= std::numeric_limits<double>::max() ? d2 : std::numeric_limits<double>::infinity());
   }
-  return {max_d2, std::max(mover.move2, 0.0), mover.index == 0xffffffffu ? 0u : mover.index};
+  return {std::sqrt(moved.first), std::sqrt(moved.second), std::max(mover.move2, 0.0),
+          mover.index == 0xffffffffu ? 0u : mover.index};
 }
 
 }  // namespace

@@ -34,7 +34,8 @@ inline void half_kick(double& vx, double& vy, double& vz, double fx, double fy, 
 }
 
 struct DriftResult {
-  double max_d2 = 0.0;      // mm^2: largest squared displacement since the last list build
+  double largest_move = 0.0;  // mm: largest displacement since the last list build
+  double second_move = 0.0;   // mm: second largest
   double move2 = 0.0;       // 1: largest (|dt v| / r)^2 of this step (inf when non-finite)
   std::uint32_t mover = 0;  // storage index reaching it
 };

@@ -5,12 +5,13 @@
 #include <cmath>
 #include <numeric>
 
+#include <omp.h>
+
 namespace rupture::dem {
 
 // Cells no smaller than the largest cutoff (2 r_max + skin); particles binned by a counting sort in
 // storage order; each particle's candidates visited in a fixed cell order.
-void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double max_radius, double skin,
-                          bool parallel) {
+void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double max_radius, bool parallel) {
   const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
   const auto& x = p.x;
   const auto& y = p.y;
@@ -70,40 +71,65 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
           }
         }
   };
-  // Pass 1: capacity per particle = candidates + intact bonds (room for pairs released by breaks).
-  capacity_.resize(n);
-#pragma omp parallel for schedule(static) if (parallel)
-  for (std::uint32_t a = 0; a < n; ++a) {
-    std::uint32_t found = 0;
-    visit(a, [&](std::uint32_t) { ++found; });
-    capacity_[a] = found + bonds.link_count[a];
+  // One pass: each thread gathers its particles' candidates, each particle's sorted; then the slices
+  // are laid out with room for the pairs their intact bonds may release, and filled.
+  const int threads = parallel ? omp_get_max_threads() : 1;
+  if (found_.size() < std::size_t(threads)) found_.resize(std::size_t(threads));
+  found_thread_.resize(n);
+  found_at_.resize(n);
+#pragma omp parallel if (parallel)
+  {
+    const int thread = omp_get_thread_num();
+    auto& found = found_[std::size_t(thread)];
+    found.clear();
+#pragma omp for schedule(static)
+    for (std::uint32_t a = 0; a < n; ++a) {
+      const std::size_t begin = found.size();
+      visit(a, [&](std::uint32_t b) { found.push_back(b); });
+      std::sort(found.begin() + std::ptrdiff_t(begin), found.end());
+      found_thread_[a] = std::uint32_t(thread);
+      found_at_[a] = std::uint32_t(begin);
+      count[a] = std::uint32_t(found.size() - begin);
+    }
   }
   start[0] = 0;
-  for (std::uint32_t a = 0; a < n; ++a) start[a + 1] = start[a] + capacity_[a];
+  for (std::uint32_t a = 0; a < n; ++a) start[a + 1] = start[a] + count[a] + bonds.link_count[a];
   list.resize(start[n]);
 #pragma omp parallel for schedule(static) if (parallel)
-  for (std::uint32_t a = 0; a < n; ++a) {
-    std::uint32_t found = 0;
-    visit(a, [&](std::uint32_t b) { list[start[a] + found++] = b; });
-    count[a] = found;
-  }
+  for (std::uint32_t a = 0; a < n; ++a)
+    std::copy_n(found_[found_thread_[a]].begin() + found_at_[a], count[a], list.begin() + start[a]);
   xb = x;
   yb = y;
   zb = z;
   ++builds;
 }
 
-void NeighbourList::add_pair(std::uint32_t a, std::uint32_t b) {
+void NeighbourList::insert_sorted(std::uint32_t a, std::uint32_t b) {
   assert(count[a] < start[a + 1] - start[a] && "neighbour slice has room for every released bond");
-  assert(count[b] < start[b + 1] - start[b] && "neighbour slice has room for every released bond");
-  list[start[a] + count[a]++] = b;
-  list[start[b] + count[b]++] = a;
+  std::uint32_t q = start[a] + count[a]++;
+  for (; q > start[a] && list[q - 1] > b; --q) list[q] = list[q - 1];
+  list[q] = b;
+}
+
+void NeighbourList::add_pair(std::uint32_t a, std::uint32_t b) {
+  insert_sorted(a, b);
+  insert_sorted(b, a);
+}
+
+void NeighbourList::adapt_skin(std::uint64_t step, double narrowest, double widest) {
+  const std::uint64_t lasted = step - built_at_step;
+  built_at_step = step;
+  if (lasted < 50)
+    skin = std::min(widest, 1.5 * skin);
+  else if (lasted > 500)
+    skin = std::max(narrowest, skin / 1.5);
 }
 
 std::size_t NeighbourList::bytes() const {
   std::size_t total = (xb.capacity() + yb.capacity() + zb.capacity()) * sizeof(double);
-  for (const auto* v : {&start, &count, &list, &cell_start_, &cell_particles_, &capacity_})
+  for (const auto* v : {&start, &count, &list, &cell_start_, &cell_particles_, &found_thread_, &found_at_})
     total += v->capacity() * sizeof(std::uint32_t);
+  for (const auto& found : found_) total += found.capacity() * sizeof(std::uint32_t);
   return total;
 }
 

@@ -77,14 +77,16 @@ System::System(const Sample& sample, const Params& params)
       particles_(sample, params_),
       bonds_(sample, particles_.storage_of_sample, params_),
       stability_(stability_bound(particles_, bonds_, params_)),
-      parallel_(sample.size() >= 2048) {
+      parallel_(sample.size() >= 2048),
+      widest_skin_(4.0 * params_.skin) {
+  neighbours_.skin = params_.skin;
   rebuild_neighbours();
   refresh_forces();
 }
 
 void System::rebuild_neighbours() {
   timed(times_.neighbours, [&] {
-    neighbours_.build(particles_.hot, bonds_, particles_.max_radius, params_.skin, parallel_);
+    neighbours_.build(particles_.hot, bonds_, particles_.max_radius, parallel_);
   });
 }
 
@@ -109,7 +111,10 @@ void System::step(double dt, const PlateMotion& top) {
   last_move_ = {std::sqrt(drift.move2), particles_.sample_of_storage[drift.mover]};
   time_ += dt;
   ++step_;
-  if (!(drift.max_d2 <= 0.25 * params_.skin * params_.skin)) rebuild_neighbours();
+  if (neighbours_.stale(drift.largest_move, drift.second_move)) {
+    neighbours_.adapt_skin(step_, params_.skin, widest_skin_);
+    rebuild_neighbours();
+  }
   timed(times_.forces, [&] { force_pass(step, particles_, bonds_, neighbours_, breaks_, params_, parallel_); });
   timed(times_.plates, [&] { ledger_.update_plate_forces(step, particles_, params_); });
   timed(times_.breaks,

@@ -134,6 +134,7 @@ class System {
   bool forces_stale_ = false;  // bonds were broken by hand since the last force pass
   // Small systems run on one thread: a parallel region costs more than their whole step.
   bool parallel_ = false;
+  double widest_skin_;  // mm: how far the neighbour list's skin may widen (Params::skin is the narrowest)
   StageTimes times_;
   StepMove last_move_;
 };
