@@ -10,6 +10,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "dem/system.hpp"
 #include "loading/ramp.hpp"
@@ -87,6 +88,29 @@ TEST(Golden, StateDoesNotDependOnTheSkin) {
     EXPECT_EQ(got.state_hash, reference.state_hash) << "skin " << skin;
     EXPECT_EQ(got.released_bits, reference.released_bits) << "skin " << skin;
   }
+}
+
+// Same state, bit for bit, for 1, 2 and 3 threads (another seed and break distance than above).
+TEST(Determinism, StateHashIsIndependentOfThreadCount) {
+  const Sample tissue = make_preset("tissue-small", 7);
+  Params p;
+  p.break_distance = 4e-3;
+  std::vector<std::uint64_t> hashes;
+  std::vector<std::size_t> broken;
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    System system(tissue, p);
+    const double dt = 0.4 * system.critical_dt();
+    const loading::SpeedRamp ramp{20000.0, 50 * dt};
+    for (int s = 1; s <= 400; ++s) system.step(dt, ramp.at(s * dt));
+    hashes.push_back(system.state_hash());
+    broken.push_back(system.bond_count() - system.intact_bonds());
+  }
+  omp_set_num_threads(2);
+  EXPECT_GT(broken[0], 0u) << "some bonds must break so that the break path is covered";
+  EXPECT_EQ(hashes[0], hashes[1]);
+  EXPECT_EQ(hashes[0], hashes[2]);
+  EXPECT_EQ(broken[0], broken[1]);
 }
 
 }  // namespace
