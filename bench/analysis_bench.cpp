@@ -1,9 +1,9 @@
 // Kernels of the loading-curve analysis: the zero-phase Butterworth filter, the Savitzky–Golay
 // derivative, and the whole pipeline on a noisy power-law curve of 10^4..10^6 samples.
+#include <benchmark/benchmark.h>
+
 #include <cmath>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "analysis/analysis.hpp"
 #include "core/random.hpp"
@@ -36,7 +36,8 @@ BENCHMARK(BM_sosfiltfilt)->Arg(10000)->Arg(1000000);
 void BM_savgol_derivative(benchmark::State& state) {
   const auto c = noisy_curve(1000000);
   const int window = static_cast<int>(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(rupture::analysis::savgol_filter(c.energy, window, 3, 1, 1e-6));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(rupture::analysis::savgol_filter(c.energy, window, 3, 1, 1e-6));
   state.SetItemsProcessed(state.iterations() * 1000000);
 }
 BENCHMARK(BM_savgol_derivative)->Arg(7)->Arg(101);

@@ -1,14 +1,13 @@
 #include "analysis/analysis.hpp"
 
-#include "analysis/bootstrap.hpp"
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <limits>
 
-#include <boost/math/tools/roots.hpp>
-#include <fmt/format.h>
-
+#include "analysis/bootstrap.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
 
@@ -19,8 +18,8 @@ namespace {
 int odd_at_least(int w) { return w % 2 == 0 ? w + 1 : w; }
 
 // Finds a column by the user's name or by rupture's default names; throws naming the options.
-std::size_t pick_column(const io::CsvTable& table, const std::string& chosen, std::initializer_list<const char*> defaults,
-                        const char* option) {
+std::size_t pick_column(const io::CsvTable& table, const std::string& chosen,
+                        std::initializer_list<const char*> defaults, const char* option) {
   if (!chosen.empty()) return table.require(chosen);
   for (const char* name : defaults) {
     if (auto c = table.find(name)) return *c;
@@ -35,9 +34,10 @@ std::vector<double> scaled_column(const io::CsvTable& table, std::size_t c, doub
   std::vector<double> values = table.columns[c];
   for (std::size_t row = 0; row < values.size(); ++row) {
     if (!std::isfinite(values[row])) {
-      throw InputError(fmt::format("{}:{}", table.source, table.line_of_row[row]),
-                       fmt::format("column {} ('{}'): '{}' is not a finite number", c + 1, table.header[c], values[row]),
-                       "remove the row or replace the value by a measured number");
+      throw InputError(
+          fmt::format("{}:{}", table.source, table.line_of_row[row]),
+          fmt::format("column {} ('{}'): '{}' is not a finite number", c + 1, table.header[c], values[row]),
+          "remove the row or replace the value by a measured number");
     }
     values[row] *= scale;
   }
@@ -46,24 +46,28 @@ std::vector<double> scaled_column(const io::CsvTable& table, std::size_t c, doub
 
 // The column's unit: the option's, else the header's `name[unit]`; a header without one is taken as
 // dimensionless, with a warning naming the option that sets it.
-std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string& override_unit, const char* option,
-                    std::vector<std::string>& warnings) {
+std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string& override_unit,
+                    const char* option, std::vector<std::string>& warnings) {
   if (!override_unit.empty()) return override_unit;
   const auto unit = io::column_unit(table.header[c]);
   if (!unit.empty()) return unit;
-  warnings.push_back(fmt::format("{}: column '{}' names no unit (write it as {}[unit]); taken as 1 (dimensionless): "
-                                 "give {} if it has one",
-                                 table.source, table.header[c], table.header[c], option));
+  warnings.push_back(
+      fmt::format("{}: column '{}' names no unit (write it as {}[unit]); taken as 1 (dimensionless): "
+                  "give {} if it has one",
+                  table.source, table.header[c], table.header[c], option));
   return "1";
 }
 
 // Unit of a quotient, e.g. "mJ" / "%" -> "mJ/%"; a dimensionless denominator drops out.
 std::string unit_ratio(const std::string& numerator, const std::string& denominator) {
   if (denominator == "1") return numerator;
-  return numerator + "/" + (denominator.find('/') != std::string::npos ? "(" + denominator + ")" : denominator);
+  return numerator + "/" +
+         (denominator.find('/') != std::string::npos ? "(" + denominator + ")" : denominator);
 }
 
-std::string per_strain(const std::string& unit, const std::string& strain_unit) { return unit_ratio(unit, strain_unit); }
+std::string per_strain(const std::string& unit, const std::string& strain_unit) {
+  return unit_ratio(unit, strain_unit);
+}
 
 // Height of the global maximum above the higher of the lowest points on either side.
 double prominence_of_maximum(std::span<const double> y, std::size_t top) {
@@ -81,8 +85,9 @@ std::optional<double> alpha_from_ratio(double ratio) {
   const double f_lo = critical_to_precursor_ratio(lo) - ratio, f_hi = critical_to_precursor_ratio(hi) - ratio;
   if (!(f_lo > 0.0 && f_hi < 0.0)) return std::nullopt;
   std::uintmax_t iterations = 200;
-  const auto root = boost::math::tools::bisect([&](double a) { return critical_to_precursor_ratio(a) - ratio; }, lo, hi,
-                                               boost::math::tools::eps_tolerance<double>(50), iterations);
+  const auto root =
+      boost::math::tools::bisect([&](double a) { return critical_to_precursor_ratio(a) - ratio; }, lo, hi,
+                                 boost::math::tools::eps_tolerance<double>(50), iterations);
   return 0.5 * (root.first + root.second);
 }
 
@@ -106,7 +111,8 @@ const FbmBand& power_law_band() {
 
 namespace {
 
-AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p, const std::optional<Measured>& gamma,
+AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p,
+                             const std::optional<Measured>& gamma,
                              const std::optional<Measured>& energy_ratio) {
   AlphaEstimate a;
   a.alpha = alpha_from_ratio(1.0 + delay.mean / x_p.value);
@@ -120,7 +126,8 @@ AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p, c
   a.energy_ratio_band_high = band.energy_ratio_high;
   // "In the band" allows the measurement's own 2-sigma uncertainty.
   if (gamma) {
-    a.gamma_in_band = gamma->value + 2.0 * gamma->error >= a.gamma_band_low && gamma->value - 2.0 * gamma->error <= a.gamma_band_high;
+    a.gamma_in_band = gamma->value + 2.0 * gamma->error >= a.gamma_band_low &&
+                      gamma->value - 2.0 * gamma->error <= a.gamma_band_high;
   }
   if (energy_ratio) {
     a.energy_ratio_in_band = energy_ratio->value + 2.0 * energy_ratio->error >= a.energy_ratio_band_low &&
@@ -159,7 +166,8 @@ Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice) {
   return curve;
 }
 
-BreakLog select_breaks(const io::CsvTable& breaks, double scale, std::optional<std::pair<double, double>> layer_heights) {
+BreakLog select_breaks(const io::CsvTable& breaks, double scale,
+                       std::optional<std::pair<double, double>> layer_heights) {
   BreakLog log;
   log.strain = scaled_column(breaks, breaks.require("strain"), scale);
   const auto y = breaks.find("y");
@@ -173,7 +181,8 @@ BreakLog select_breaks(const io::CsvTable& breaks, double scale, std::optional<s
 
 std::size_t minimum_rows(const AnalysisOptions& options) {
   // The filter's padding, the derivative window and a peak fit with room on both sides.
-  return std::max<std::size_t>({minimum_samples(options.filter), static_cast<std::size_t>(options.derivative_window),
+  return std::max<std::size_t>({minimum_samples(options.filter),
+                                static_cast<std::size_t>(options.derivative_window),
                                 4 * options.peak.min_side + 8, 16});
 }
 
@@ -201,7 +210,8 @@ struct PeakMeasurement {
 // `collapse_fraction` of it: after that the sample has come apart, and what E_e and ℰ do (the
 // halves ringing, fragments flying) is no precursor. x_p and x_m are sought inside the phase, on
 // either side of x_c: nothing assumes x_p < x_c.
-std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_t force_top, double collapse_fraction) {
+std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_t force_top,
+                              double collapse_fraction) {
   const double level = collapse_fraction * filtered_force[force_top];
   for (std::size_t i = force_top + 1; i < filtered_force.size(); ++i) {
     if (filtered_force[i] < level) return i;
@@ -211,8 +221,8 @@ std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_
 
 // Filter, derivative and the three maxima: the one measurement made on the data and on every
 // bootstrap replicate.
-PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double> force, std::span<const double> energy,
-                              const PeakSearch& search) {
+PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double> force,
+                              std::span<const double> energy, const PeakSearch& search) {
   PeakMeasurement m;
   FilterSettings filter = search.filter;
   m.filtered_force = apply_filter(filter, force);
@@ -221,7 +231,9 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
   const std::size_t first = std::min(search.margin_low, xs.size() - 1);
   const std::size_t last = xs.size() - 1 - std::min(search.margin_high, xs.size() - 1 - first);
-  const auto inner = [&](std::span<const double> y, std::size_t end) { return y.subspan(first, end - first + 1); };
+  const auto inner = [&](std::span<const double> y, std::size_t end) {
+    return y.subspan(first, end - first + 1);
+  };
   m.force = fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak);
   m.force.index += first;
   m.phase_end = std::min(last, loading_phase_end(m.filtered_force, m.force.index, search.collapse_fraction));
@@ -232,9 +244,11 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   // noise is several times the interior's: on a noisy curve they would win the maximum.
   const auto half = static_cast<std::size_t>(search.derivative_window / 2);
   const std::size_t rate_first = std::max(first, std::min(half, m.phase_end));
-  const std::size_t rate_end = std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
+  const std::size_t rate_end =
+      std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
   m.rate = fit_peak(xs.subspan(rate_first, rate_end - rate_first + 1),
-                    std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1), 0.0, 1.0, search.peak);
+                    std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1),
+                    0.0, 1.0, search.peak);
   m.energy.index += first;
   m.rate.index += rate_first;
   return m;
@@ -245,7 +259,11 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
 std::optional<PeakValues> peak_values(const PeakMeasurement& m, bool want_energy_peak) {
   if (!m.force.found || !m.rate.found || (want_energy_peak && !m.energy.found)) return std::nullopt;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  return PeakValues{m.force.x, m.force.value, m.rate.x, m.rate.value, want_energy_peak ? m.energy.x : nan,
+  return PeakValues{m.force.x,
+                    m.force.value,
+                    m.rate.x,
+                    m.rate.value,
+                    want_energy_peak ? m.energy.x : nan,
                     want_energy_peak ? m.energy.value : nan};
 }
 
@@ -263,11 +281,13 @@ std::optional<std::size_t> first_strain_decrease(std::span<const double> strain)
 std::size_t bootstrap_padding(const PeakSearch& search, std::size_t n) {
   double length = search.derivative_window;
   if (search.filter.kind == FilterKind::butterworth) length = std::max(length, 4.0 / search.filter.cutoff);
-  if (search.filter.kind == FilterKind::savitzky_golay) length = std::max<double>(length, 2 * search.filter.savgol_window);
+  if (search.filter.kind == FilterKind::savitzky_golay)
+    length = std::max<double>(length, 2 * search.filter.savgol_window);
   return std::min(n, static_cast<std::size_t>(std::ceil(length)) + 4 * search.peak.min_side);
 }
 
-std::vector<double> replicate_values(const std::vector<PeakValues>& replicates, double (*value)(const PeakValues&)) {
+std::vector<double> replicate_values(const std::vector<PeakValues>& replicates,
+                                     double (*value)(const PeakValues&)) {
   std::vector<double> v;
   v.reserve(replicates.size());
   for (const auto& r : replicates) v.push_back(value(r));
@@ -309,7 +329,8 @@ int derivative_window_for(const FilterSettings& filter, int requested, std::size
   double length = 7.0;
   if (filter.kind == FilterKind::butterworth) length = 0.5 / filter.cutoff;
   if (filter.kind == FilterKind::savitzky_golay) length = filter.savgol_window;
-  return odd_at_least(std::clamp(static_cast<int>(std::lround(length)), 7, std::clamp(static_cast<int>(n / 4), 7, 101)));
+  return odd_at_least(
+      std::clamp(static_cast<int>(std::lround(length)), 7, std::clamp(static_cast<int>(n / 4), 7, 101)));
 }
 
 // One measurement with its bootstrap: the noise model over the span of the fits, the replicates,
@@ -340,9 +361,11 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
   const std::size_t pad = bootstrap_padding(search, n);
   const double step = xs[1] - xs[0];
   const auto index_of = [&](double x) {
-    return static_cast<std::size_t>(std::clamp<double>(std::lround((x - xs[0]) / step), 0.0, static_cast<double>(n - 1)));
+    return static_cast<std::size_t>(
+        std::clamp<double>(std::lround((x - xs[0]) / step), 0.0, static_cast<double>(n - 1)));
   };
-  const std::size_t core_low = index_of(low_x), core_high = std::max(core_low, std::min(index_of(high_x), m.phase_end));
+  const std::size_t core_low = index_of(low_x),
+                    core_high = std::max(core_low, std::min(index_of(high_x), m.phase_end));
   BootstrapRun run;
   run.values = *values;
   run.low = core_low > pad ? core_low - pad : 0;
@@ -357,7 +380,8 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
     return peak_values(measure_peaks(window_x, f, e, replicate_search), have_energy_peak);
   };
   run.boot = bootstrap_peaks(std::span<const double>(m.filtered_force).subspan(run.low, count),
-                             std::span<const double>(m.filtered_energy).subspan(run.low, count), run.noise, measure, options);
+                             std::span<const double>(m.filtered_energy).subspan(run.low, count), run.noise,
+                             measure, options);
   return run;
 }
 
@@ -365,8 +389,9 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
 // window following). Replicates of an already smoothed curve cannot show how far the smoothing
 // itself moved a maximum; the shift under a weaker filter can (x_c and x_p; zero when it cannot be
 // measured).
-PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> force, std::span<const double> energy,
-                           const PeakSearch& search, const PeakValues& values, int requested_derivative_window) {
+PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> force,
+                           std::span<const double> energy, const PeakSearch& search, const PeakValues& values,
+                           int requested_derivative_window) {
   PeakValues shift{};
   if (search.filter.kind != FilterKind::butterworth) return shift;
   PeakSearch weaker = search;
@@ -410,16 +435,19 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.warnings = curve.warnings;
   const std::size_t needed = minimum_rows(options);
   if (curve.strain.size() < needed) {
-    throw InputError(curve.source, fmt::format("{} data rows, the analysis needs at least {}", curve.strain.size(), needed),
+    throw InputError(curve.source,
+                     fmt::format("{} data rows, the analysis needs at least {}", curve.strain.size(), needed),
                      "give a longer curve (or a weaker filter: --filter none)");
   }
   // 0. One loading: a strain that goes back is rejected, naming the rows (data row numbers, 1-based).
   if (const auto back = first_strain_decrease(curve.strain)) {
     r.resample.input_rows = curve.strain.size();
     r.rejection = fmt::format(
-        "the strain decreases from data row {} ({:.6g} {}) to row {} ({:.6g} {}): the curve unloads and reloads; "
+        "the strain decreases from data row {} ({:.6g} {}) to row {} ({:.6g} {}): the curve unloads and "
+        "reloads; "
         "analyse one monotone loading branch (e.g. rows 1-{})",
-        *back, curve.strain[*back - 1], curve.strain_unit, *back + 1, curve.strain[*back], curve.strain_unit, *back);
+        *back, curve.strain[*back - 1], curve.strain_unit, *back + 1, curve.strain[*back], curve.strain_unit,
+        *back);
     return r;
   }
   // 1. Uniform grid.
@@ -427,7 +455,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   UniformCurves grid = resample_uniform(curve.strain, columns, r.resample);
   average_blocks(grid, options.max_samples, r.resample);
   if (grid.size() < needed) {
-    throw InputError(curve.source, fmt::format("{} distinct strains, the analysis needs at least {}", grid.size(), needed),
+    throw InputError(curve.source,
+                     fmt::format("{} distinct strains, the analysis needs at least {}", grid.size(), needed),
                      "give a curve with more distinct strain values");
   }
   const std::size_t n = grid.size();
@@ -443,8 +472,11 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // increments, which are then the white part: on the curves themselves it would take the walk's
   // low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed.
   const auto whole_curve_noise = estimate_noise(force, energy, 0, n - 1);
-  const auto walk_dominated = [](const NoiseComponents& c) { return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white; };
-  r.filter_on_increments = walk_dominated(whole_curve_noise.force) || walk_dominated(whole_curve_noise.energy);
+  const auto walk_dominated = [](const NoiseComponents& c) {
+    return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
+  };
+  r.filter_on_increments =
+      walk_dominated(whole_curve_noise.force) || walk_dominated(whole_curve_noise.energy);
   if (r.filter_on_increments) {
     std::vector<double> force_steps(n - 1), energy_steps(n - 1);
     for (std::size_t i = 0; i + 1 < n; ++i) {
@@ -462,8 +494,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.energy_noise = noise_from_differences(energy);
 
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
-  const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, n), options.peak,
-                          options.acceptance.collapse_fraction};
+  const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, n),
+                          options.peak, options.acceptance.collapse_fraction};
   r.derivative_window = search.derivative_window;
 
   // 4. The maxima, inside the loading phase.
@@ -501,17 +533,22 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // ambiguous); the mechanism's count of maxima is the loading phase's, so that the ringing of the
   // separated halves is not taken for a slow destruction.
   const auto maxima = significant_maxima(r.filtered_force, 0.05 * std::abs(F_top));
-  r.force_maxima = static_cast<int>(significant_maxima(std::span<const double>(r.filtered_force).first(phase), 0.05 * std::abs(F_top)).size());
+  r.force_maxima = static_cast<int>(
+      significant_maxima(std::span<const double>(r.filtered_force).first(phase), 0.05 * std::abs(F_top))
+          .size());
   if (!r.force_peak->found) {
     reject("force peak: " + r.force_peak->problem);
-  } else if (prominence_of_maximum(r.filtered_force, force_top) < options.acceptance.min_prominence * std::abs(F_top)) {
-    reject(fmt::format("force peak not pronounced: it rises less than {:g} % of F_c above the curve on either side",
-                       100.0 * options.acceptance.min_prominence));
+  } else if (prominence_of_maximum(r.filtered_force, force_top) <
+             options.acceptance.min_prominence * std::abs(F_top)) {
+    reject(fmt::format(
+        "force peak not pronounced: it rises less than {:g} % of F_c above the curve on either side",
+        100.0 * options.acceptance.min_prominence));
   } else {
     for (std::size_t k : maxima) {
       if (k != force_top && r.filtered_force[k] >= options.acceptance.competing_maximum * F_top) {
-        reject(fmt::format("several force maxima of similar height (x = {:.6g} and x = {:.6g} {}): x_c is ambiguous",
-                           xs[force_top], xs[k], curve.strain_unit));
+        reject(fmt::format(
+            "several force maxima of similar height (x = {:.6g} and x = {:.6g} {}): x_c is ambiguous",
+            xs[force_top], xs[k], curve.strain_unit));
         break;
       }
     }
@@ -521,8 +558,9 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
     reject("energy-rate peak: " + r.rate_peak->problem);
   } else if (prominence_of_maximum(phase_rate, r.rate_peak->index) <
              options.acceptance.min_prominence * std::abs(r.energy_rate[r.rate_peak->index])) {
-    reject(fmt::format("energy-rate peak not pronounced: it rises less than {:g} % of ℰ_max above the curve on either side",
-                       100.0 * options.acceptance.min_prominence));
+    reject(fmt::format(
+        "energy-rate peak not pronounced: it rises less than {:g} % of ℰ_max above the curve on either side",
+        100.0 * options.acceptance.min_prominence));
   }
 
   // 6. Uncertainty of every number: a parametric bootstrap of the measurement (bootstrap.hpp) over
@@ -541,9 +579,11 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
     };
     const auto shift = smoothing_shift(xs, force, energy, search, *values, options.derivative_window);
-    const auto x_c = add_systematic(interval(values->x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c);
+    const auto x_c =
+        add_systematic(interval(values->x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c);
     const auto F_c = interval(values->F_c, [](const PeakValues& v) { return v.F_c; });
-    const auto x_p = add_systematic(interval(values->x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p);
+    const auto x_p =
+        add_systematic(interval(values->x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p);
     const auto Erate = interval(values->Erate_max, [](const PeakValues& v) { return v.Erate_max; });
     const auto x_m = interval(values->x_m, [](const PeakValues& v) { return v.x_m; });
     const auto E_max = interval(values->E_max, [](const PeakValues& v) { return v.E_max; });
@@ -556,40 +596,49 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       r.E_max = measured(E_max.estimate, E_max.sd, curve.energy_unit);
     }
     const auto direct =
-        add_systematic(interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }), shift.x_c - shift.x_p);
+        add_systematic(interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
+                       shift.x_c - shift.x_p);
     r.delta_x_direct = measured(direct.estimate, direct.sd, curve.strain_unit);
 
     // 7. δ_x by the chosen method, then Γ, A_r, α.
     DelayPosterior delay;
     if (options.delay_method == DelayMethod::fitted_maxima) {
-      delay = delay_from_replicates(direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }));
+      delay = delay_from_replicates(
+          direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }));
       r.delta_x_bias = direct.bias;
     } else {
-      delay = infer_delay(grid.x0, grid.step, force, r.filtered_force, r.energy_rate, force_top, options.delay);
+      delay =
+          infer_delay(grid.x0, grid.step, force, r.filtered_force, r.energy_rate, force_top, options.delay);
       if (!(delay.scale_at_map > 0.0)) {
-        reject(fmt::format("no positive scale c fits F ≈ c·ℰ(x − δ) (best c = {:.3g}): the force peak does not match the "
-                           "energy-rate peak",
-                           delay.scale_at_map));
+        reject(fmt::format(
+            "no positive scale c fits F ≈ c·ℰ(x − δ) (best c = {:.3g}): the force peak does not match the "
+            "energy-rate peak",
+            delay.scale_at_map));
       }
       if (delay.at_prior_bound) {
-        reject("δ_x undetermined: the posterior reaches the end of the admissible shifts (the data around the peaks is too short)");
+        reject(
+            "δ_x undetermined: the posterior reaches the end of the admissible shifts (the data around the "
+            "peaks is too short)");
       }
     }
     r.delay = delay;
     r.delta_x = measured(delay.mean, delay.sd, curve.strain_unit);
     const double delta = delay.mean;
     if (delta != 0.0 && have_energy_peak) {
-      r.Gamma = measured((r.x_m->value - r.x_c->value) / delta, robust_spread(boot.replicates, gamma_of), "1");
+      r.Gamma =
+          measured((r.x_m->value - r.x_c->value) / delta, robust_spread(boot.replicates, gamma_of), "1");
     }
     if (have_energy_peak) {
-      const auto ratio = interval(energy_ratio_of(*values), energy_ratio_of);  // bias-corrected like every other number
+      const auto ratio =
+          interval(energy_ratio_of(*values), energy_ratio_of);  // bias-corrected like every other number
       r.A_r = measured(ratio.estimate, ratio.sd, "1");
     }
     r.alpha = alpha_estimate(delay, *r.x_p, r.Gamma, r.A_r);
     if (boot.failed > options.acceptance.max_failed_replicates * boot.attempted) {
-      reject(fmt::format("the peaks are unstable under the curve's own noise: in {} of {} noise replicates a maximum "
-                         "was not found",
-                         boot.failed, boot.attempted));
+      reject(fmt::format(
+          "the peaks are unstable under the curve's own noise: in {} of {} noise replicates a maximum "
+          "was not found",
+          boot.failed, boot.attempted));
     } else if (delay.sd > options.acceptance.max_relative_delay_sd * std::abs(r.x_c->value - grid.x0)) {
       reject(fmt::format("δ_x too uncertain: sd {:.3g} {} exceeds {:g} of x_c", delay.sd, curve.strain_unit,
                          options.acceptance.max_relative_delay_sd));
@@ -617,7 +666,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
         break;
       }
     }
-    if (F_top > 0.0) f.loading_undulation = deepest_dip(std::span<const double>(r.filtered_force).first(force_top)) / F_top;
+    if (F_top > 0.0)
+      f.loading_undulation = deepest_dip(std::span<const double>(r.filtered_force).first(force_top)) / F_top;
     // Breaks after the loading phase (fragments ringing, the extra pull after separation) say
     // nothing of how the sample failed.
     const BreakLog loading_breaks = breaks_until(breaks, r.loading_phase_end);
@@ -637,18 +687,24 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
 
 namespace {
 
-nlohmann::json to_json(const Measured& m) { return {{"value", m.value}, {"error", m.error}, {"unit", m.unit}}; }
+nlohmann::json to_json(const Measured& m) {
+  return {{"value", m.value}, {"error", m.error}, {"unit", m.unit}};
+}
 
 template <class T>
 nlohmann::json optional_json(const std::optional<T>& v) {
   if (!v) return nullptr;
-  if constexpr (std::is_same_v<T, Measured>) return to_json(*v);
-  else return *v;
+  if constexpr (std::is_same_v<T, Measured>)
+    return to_json(*v);
+  else
+    return *v;
 }
 
 nlohmann::json peak_json(const std::optional<PeakFit>& fit, const std::string& unit) {
   if (!fit) return nullptr;
-  nlohmann::json j = {{"found", fit->found}, {"window", {fit->window_low, fit->window_high}}, {"window_unit", unit},
+  nlohmann::json j = {{"found", fit->found},
+                      {"window", {fit->window_low, fit->window_high}},
+                      {"window_unit", unit},
                       {"points", fit->points}};
   if (!fit->found) j["problem"] = fit->problem;
   return j;
@@ -681,12 +737,15 @@ nlohmann::json to_json(const AnalysisResult& r) {
                    {"output_rows", r.resample.output_rows},
                    {"block_average", r.resample.block_average},
                    {"step", {{"value", r.resample.step}, {"unit", r.strain_unit}}}};
-  nlohmann::json filter = {{"kind", to_string(r.filter.kind)}, {"applied_to", {"force", "elastic_energy"}},
-                           {"zero_phase", true}, {"discrepancy", r.filter.discrepancy}};
+  nlohmann::json filter = {{"kind", to_string(r.filter.kind)},
+                           {"applied_to", {"force", "elastic_energy"}},
+                           {"zero_phase", true},
+                           {"discrepancy", r.filter.discrepancy}};
   if (r.filter.kind == FilterKind::butterworth) {
     filter["order"] = r.filter.butterworth_order;
     filter["cutoff_nyquist"] = r.filter.cutoff;
-    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)}, {"unit", unit_ratio("1", r.strain_unit)}};
+    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)},
+                                   {"unit", unit_ratio("1", r.strain_unit)}};
     filter["method"] = "forward-backward second-order sections, odd padding (sosfiltfilt)";
   } else if (r.filter.kind == FilterKind::savitzky_golay) {
     filter["window_samples"] = r.filter.savgol_window;
@@ -709,13 +768,23 @@ nlohmann::json to_json(const AnalysisResult& r) {
                     {"method", "cubic least squares around the largest sample; stationary point"}};
   if (r.delay) {
     const auto& d = *r.delay;
-    nlohmann::json delta = {{"value", d.mean}, {"error", d.sd}, {"unit", r.strain_unit}, {"method", to_string(r.delay_method)},
-                            {"map", d.map}, {"mean", d.mean}, {"median", d.median}, {"sd", d.sd},
-                            {"ci68", {d.ci68_low, d.ci68_high}}, {"ci95", {d.ci95_low, d.ci95_high}}};
-    const nlohmann::json density = {{"delta", d.delta}, {"density", d.density}, {"delta_unit", r.strain_unit},
+    nlohmann::json delta = {{"value", d.mean},
+                            {"error", d.sd},
+                            {"unit", r.strain_unit},
+                            {"method", to_string(r.delay_method)},
+                            {"map", d.map},
+                            {"mean", d.mean},
+                            {"median", d.median},
+                            {"sd", d.sd},
+                            {"ci68", {d.ci68_low, d.ci68_high}},
+                            {"ci95", {d.ci95_low, d.ci95_high}}};
+    const nlohmann::json density = {{"delta", d.delta},
+                                    {"density", d.density},
+                                    {"delta_unit", r.strain_unit},
                                     {"density_unit", unit_ratio("1", r.strain_unit)}};
     if (r.delay_method == DelayMethod::fitted_maxima) {
-      delta["model"] = "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise";
+      delta["model"] =
+          "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise";
       delta["bias"] = r.delta_x_bias;
       delta["sampling_distribution"] = density;
     } else {
@@ -740,13 +809,18 @@ nlohmann::json to_json(const AnalysisResult& r) {
   const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
     return nlohmann::json{{"white_sd", c.white}, {"walk_step_sd", c.walk}, {"unit", unit}};
   };
-  j["uncertainty"] = {{"method", "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
-                                 "filtered curves, every replicate filtered, differentiated and fitted again"},
-                      {"replicates", r.bootstrap_replicates}, {"failed_replicates", r.bootstrap_failed},
-                      {"window", {r.bootstrap_window_low, r.bootstrap_window_high}}, {"window_unit", r.strain_unit},
-                      {"noise", {{"force", noise_json(r.noise_model.force, r.force_unit)},
-                                 {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
-                                 {"correlation", r.noise_model.correlation}}}};
+  j["uncertainty"] = {
+      {"method",
+       "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
+       "filtered curves, every replicate filtered, differentiated and fitted again"},
+      {"replicates", r.bootstrap_replicates},
+      {"failed_replicates", r.bootstrap_failed},
+      {"window", {r.bootstrap_window_low, r.bootstrap_window_high}},
+      {"window_unit", r.strain_unit},
+      {"noise",
+       {{"force", noise_json(r.noise_model.force, r.force_unit)},
+        {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
+        {"correlation", r.noise_model.correlation}}}};
   j["Gamma"] = optional_json(r.Gamma);
   j["A_r"] = optional_json(r.A_r);
   j["alpha"] = {{"from_delta_over_x_p", optional_json(r.alpha.alpha)},
@@ -765,17 +839,19 @@ nlohmann::json to_json(const AnalysisResult& r) {
                {"localisation", f.crack->localisation},
                {"planes", f.crack->planes}};
     // A rejected curve carries no class (a ductile-like one is rejected for being ductile-like).
-    j["mechanism"] = {{"class", r.accepted ? nlohmann::json(to_string(r.mechanism->mechanism)) : nlohmann::json(nullptr)},
-                      {"features_say", to_string(r.mechanism->mechanism)},
-                      {"reason", r.mechanism->reason},
-                      {"features", {{"critical_strain_percent", optional_json(f.critical_strain_percent)},
-                                    {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
-                                    {"significant_force_maxima", f.force_maxima},
-                                    {"break_spread_over_x_c", optional_json(f.break_spread)},
-                                    {"post_peak_decay_over_x_c", optional_json(f.post_peak_decay)},
-                                    {"loading_undulation_over_F_c", optional_json(f.loading_undulation)},
-                                    {"crack", crack},
-                                    {"Gamma", optional_json(f.gamma)}}}};
+    j["mechanism"] = {
+        {"class", r.accepted ? nlohmann::json(to_string(r.mechanism->mechanism)) : nlohmann::json(nullptr)},
+        {"features_say", to_string(r.mechanism->mechanism)},
+        {"reason", r.mechanism->reason},
+        {"features",
+         {{"critical_strain_percent", optional_json(f.critical_strain_percent)},
+          {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
+          {"significant_force_maxima", f.force_maxima},
+          {"break_spread_over_x_c", optional_json(f.break_spread)},
+          {"post_peak_decay_over_x_c", optional_json(f.post_peak_decay)},
+          {"loading_undulation_over_F_c", optional_json(f.loading_undulation)},
+          {"crack", crack},
+          {"Gamma", optional_json(f.gamma)}}}};
   } else {
     j["mechanism"] = nullptr;
   }

@@ -9,11 +9,10 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "analysis/bootstrap.hpp"
 #include "analysis/delay.hpp"
@@ -39,7 +38,7 @@ struct Curve {
   std::vector<double> strain, force, energy;
   std::string strain_unit, force_unit, energy_unit;
   std::string strain_column, force_column, energy_column;  // header fields used
-  std::vector<std::string> warnings;  // e.g. a column whose header names no unit
+  std::vector<std::string> warnings;                       // e.g. a column whose header names no unit
 };
 
 // Where the three columns are in a table's header, and their units after scaling. Throws
@@ -62,11 +61,13 @@ BreakLog select_breaks(const io::CsvTable& breaks, double scale = 1.0,
                        std::optional<std::pair<double, double>> layer_heights = std::nullopt);
 
 struct AcceptanceRules {
-  double min_prominence = 0.1;       // F and ℰ peaks must rise this fraction of their height above their bases
-  double competing_maximum = 0.9;    // reject if another significant force maximum reaches this fraction of F_c
+  double min_prominence = 0.1;  // F and ℰ peaks must rise this fraction of their height above their bases
+  double competing_maximum = 0.9;  // reject if another significant force maximum reaches this fraction of F_c
   double max_relative_delay_sd = 0.25;  // reject if sd(δ_x) exceeds this fraction of x_c
-  double max_failed_replicates = 0.05;  // reject if a peak is lost in more than this share of noise replicates
-  double collapse_fraction = 0.25;      // the loading phase ends where F first falls below this fraction of F_c after x_c
+  double max_failed_replicates =
+      0.05;  // reject if a peak is lost in more than this share of noise replicates
+  double collapse_fraction =
+      0.25;  // the loading phase ends where F first falls below this fraction of F_c after x_c
 };
 
 // How δ_x is estimated. fitted_maxima: x_c − x_p of the cubic peak fits, unbiased for any curve
@@ -111,10 +112,10 @@ struct AlphaEstimate {
 struct AnalysisResult {
   std::string source;
   ResampleReport resample;
-  FilterSettings filter;           // with the automatic choices filled in
+  FilterSettings filter;              // with the automatic choices filled in
   bool filter_on_increments = false;  // the automatic choice ran on the increments (random-walk noise)
   int derivative_window = 0;
-  double force_noise = 0.0, energy_noise = 0.0;  // σ̂ of the raw curves (third differences)
+  double force_noise = 0.0, energy_noise = 0.0;               // σ̂ of the raw curves (third differences)
   std::optional<PeakFit> force_peak, energy_peak, rate_peak;  // x_c/F_c, x_m/E_max, x_p/ℰ_max
   std::optional<Measured> x_c, F_c, x_m, E_max, x_p, Erate_max;
   double loading_phase_end = 0.0;  // strain where the loading phase ends (AcceptanceRules::collapse_fraction)
@@ -122,9 +123,9 @@ struct AnalysisResult {
   // fitted_maxima: the replicates' sampling distribution centred on the estimate; shift_l1: the posterior.
   std::optional<DelayPosterior> delay;
   std::optional<Measured> delta_x, Gamma, A_r;  // δ_x: estimate ± sd
-  std::optional<Measured> delta_x_direct;        // x_c − x_p from the peak fits (= delta_x by default)
-  double delta_x_bias = 0.0;                     // bootstrap estimate of δ_x's bias (reported, not subtracted)
-  NoiseModel noise_model;                        // fitted in the bootstrap window
+  std::optional<Measured> delta_x_direct;       // x_c − x_p from the peak fits (= delta_x by default)
+  double delta_x_bias = 0.0;  // bootstrap estimate of δ_x's bias (reported, not subtracted)
+  NoiseModel noise_model;     // fitted in the bootstrap window
   double bootstrap_window_low = 0.0, bootstrap_window_high = 0.0;
   int bootstrap_replicates = 0, bootstrap_failed = 0;
   AlphaEstimate alpha;
@@ -132,7 +133,7 @@ struct AnalysisResult {
   std::optional<MechanismClass> mechanism;  // the class the features give; reported only when accepted
   int force_maxima = 0;
   bool accepted = false;
-  std::string rejection;           // why not accepted
+  std::string rejection;              // why not accepted
   std::vector<std::string> warnings;  // about the input (from the Curve)
   std::string strain_unit, force_unit, energy_unit;
   std::vector<double> filtered_force, filtered_energy, energy_rate;  // on the uniform grid
@@ -146,9 +147,9 @@ std::size_t minimum_rows(const AnalysisOptions& options);
 // energy-rate maximum came before the force maximum, after it, or the data cannot tell.
 std::string precursor_order(double ci95_low, double ci95_high);
 
-// Runs the whole pipeline. `breaks` may be empty (then the class rests on the curves alone). Throws InputError when the curve has
-// fewer distinct strains than minimum_rows() (naming the source). Rejections are not errors: they
-// come back with accepted = false and the reason.
+// Runs the whole pipeline. `breaks` may be empty (then the class rests on the curves alone). Throws
+// InputError when the curve has fewer distinct strains than minimum_rows() (naming the source). Rejections
+// are not errors: they come back with accepted = false and the reason.
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks = {});
 
 // Everything in the result except the grid curves, each number as {value, error, unit}; the

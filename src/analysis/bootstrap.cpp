@@ -1,12 +1,11 @@
 #include "analysis/bootstrap.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <numeric>
-
-#include <Eigen/Dense>
 
 #include "analysis/filters.hpp"
 #include "core/random.hpp"
@@ -88,7 +87,8 @@ double quantile_sorted(const std::vector<double>& sorted, double p) {
 
 }  // namespace
 
-NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low, std::size_t high) {
+NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
+                          std::size_t high) {
   assert(force.size() == energy.size());
   high = std::min(high, force.size() - 1);
   NoiseModel model;
@@ -107,8 +107,8 @@ NoiseModel estimate_noise(std::span<const double> force, std::span<const double>
   return model;
 }
 
-void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy, std::uint64_t seed,
-                     std::uint64_t replicate) {
+void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,
+                     std::uint64_t seed, std::uint64_t replicate) {
   assert(force.size() == energy.size());
   Rng rng(seed, RandomStream::analysis_bootstrap, replicate);
   const double rho = model.correlation, rest = std::sqrt(std::max(0.0, 1.0 - rho * rho));
@@ -124,8 +124,9 @@ void add_model_noise(const NoiseModel& model, std::span<double> force, std::span
   }
 }
 
-BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const double> energy, const NoiseModel& model,
-                                const PeakMeasure& measure, const BootstrapOptions& options) {
+BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const double> energy,
+                                const NoiseModel& model, const PeakMeasure& measure,
+                                const BootstrapOptions& options) {
   BootstrapResult result;
   result.attempted = std::max(0, options.replicates);
   std::vector<std::optional<PeakValues>> values(static_cast<std::size_t>(result.attempted));
@@ -141,8 +142,10 @@ BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const d
     }
   }
   for (const auto& v : values) {
-    if (v) result.replicates.push_back(*v);
-    else ++result.failed;
+    if (v)
+      result.replicates.push_back(*v);
+    else
+      ++result.failed;
   }
   return result;
 }

@@ -37,13 +37,14 @@ struct NoiseModel {
 // and the curve's own curvature c, which the fit separates instead of a filter, so that no noise is
 // filtered away before it is measured). The correlation of F with E_e is that of their lag-1
 // second differences.
-NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low, std::size_t high);
+NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
+                          std::size_t high);
 
 // Adds one draw of the model's noise to `force` and `energy` (same length), from a generator
 // seeded by (seed, replicate): the draw depends on nothing else. The random walk starts at 0 on the
 // first sample: only its increments inside the span move a maximum.
-void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy, std::uint64_t seed,
-                     std::uint64_t replicate);
+void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,
+                     std::uint64_t seed, std::uint64_t replicate);
 
 // The numbers measured on one replicate.
 struct PeakValues {
@@ -51,7 +52,8 @@ struct PeakValues {
 };
 
 // Measures (force, energy), each with noise added; nullopt when a peak is not found.
-using PeakMeasure = std::function<std::optional<PeakValues>(std::span<const double> force, std::span<const double> energy)>;
+using PeakMeasure =
+    std::function<std::optional<PeakValues>(std::span<const double> force, std::span<const double> energy)>;
 
 struct BootstrapOptions {
   int replicates = 200;
@@ -65,8 +67,9 @@ struct BootstrapResult {
 
 // Measures `replicates` noisy copies of (force, energy) = the smoothed curves. Replicates are
 // independent and are measured in parallel; the result is the same for any thread count.
-BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const double> energy, const NoiseModel& model,
-                                const PeakMeasure& measure, const BootstrapOptions& options);
+BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const double> energy,
+                                const NoiseModel& model, const PeakMeasure& measure,
+                                const BootstrapOptions& options);
 
 // Summary of one bootstrapped quantity: the estimate corrected by half the bootstrap's bias
 // estimate, its sd (the replicates' spread and the other half of the bias, in quadrature), and

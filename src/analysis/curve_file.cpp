@@ -67,8 +67,9 @@ CurveFileAnalysis analyze_curve_file(const CurveFileInputs& in, const std::strin
   }
   BreakLog breaks;
   if (!breaks_path.empty())
-    breaks = select_breaks(io::read_csv(breaks_path), in.columns.strain_scale,
-                           glued_layer_heights(std::filesystem::path(breaks_path).parent_path() / "run.json"));
+    breaks =
+        select_breaks(io::read_csv(breaks_path), in.columns.strain_scale,
+                      glued_layer_heights(std::filesystem::path(breaks_path).parent_path() / "run.json"));
   CurveFileAnalysis out;
   out.result = analyze_curve(curve, in.options, breaks);
   out.document = {{"tool", tool}, {"version", version_string}, {"inputs", inputs_json(in, breaks_path)}};

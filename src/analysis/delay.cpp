@@ -47,8 +47,10 @@ class WeightedMedian {
       double below = 0.0;
       band_items_.clear();
       for (const auto& item : items) {
-        if (item.first < low) below += item.second;
-        else if (item.first <= high) band_items_.push_back(item);
+        if (item.first < low)
+          below += item.second;
+        else if (item.first <= high)
+          band_items_.push_back(item);
       }
       double inside = 0.0;
       for (const auto& item : band_items_) inside += item.second;
@@ -67,7 +69,8 @@ class WeightedMedian {
  private:
   double remember(double value) {
     // The next δ's median is usually within a few times the last change.
-    band_ = have_guess_ ? std::max(4.0 * std::abs(value - guess_), 1e-9 * std::abs(value)) : 1e-3 * std::abs(value);
+    band_ = have_guess_ ? std::max(4.0 * std::abs(value - guess_), 1e-9 * std::abs(value))
+                        : 1e-3 * std::abs(value);
     guess_ = value;
     have_guess_ = true;
     return value;
@@ -79,7 +82,8 @@ class WeightedMedian {
 
 class Misfit {
  public:
-  Misfit(std::span<const double> force, std::span<const double> rate, double step, std::size_t low, std::size_t high)
+  Misfit(std::span<const double> force, std::span<const double> rate, double step, std::size_t low,
+         std::size_t high)
       : force_(force), rate_(rate), step_(step), low_(low), high_(high) {
     items_.reserve(high - low + 1);
   }
@@ -172,14 +176,16 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   const auto evaluate = [&](double a, double b, std::size_t points) {
     grid.resize(points);
     log_density.resize(points);
-    for (std::size_t k = 0; k < points; ++k) grid[k] = a + (b - a) * static_cast<double>(k) / static_cast<double>(points - 1);
+    for (std::size_t k = 0; k < points; ++k)
+      grid[k] = a + (b - a) * static_cast<double>(k) / static_cast<double>(points - 1);
 #pragma omp parallel
     {
       Misfit misfit(force_raw, energy_rate, step, low, high);
 #pragma omp for schedule(static)
       for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(points); ++k) {
         double scale;
-        log_density[static_cast<std::size_t>(k)] = -misfit(grid[static_cast<std::size_t>(k)], scale) / temperature;
+        log_density[static_cast<std::size_t>(k)] =
+            -misfit(grid[static_cast<std::size_t>(k)], scale) / temperature;
       }
     }
   };
@@ -221,9 +227,11 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   for (std::size_t k = 1; k < grid.size(); ++k) {
     const double h = grid[k] - grid[k - 1];
     mean += 0.5 * h * (grid[k] * post.density[k] + grid[k - 1] * post.density[k - 1]);
-    second += 0.5 * h * (grid[k] * grid[k] * post.density[k] + grid[k - 1] * grid[k - 1] * post.density[k - 1]);
+    second +=
+        0.5 * h * (grid[k] * grid[k] * post.density[k] + grid[k - 1] * grid[k - 1] * post.density[k - 1]);
   }
-  const std::size_t best = static_cast<std::size_t>(std::max_element(log_density.begin(), log_density.end()) - log_density.begin());
+  const std::size_t best = static_cast<std::size_t>(std::max_element(log_density.begin(), log_density.end()) -
+                                                    log_density.begin());
   post.map = grid[best];
   post.mean = mass > 0.0 ? mean : post.map;
   post.sd = mass > 0.0 ? std::sqrt(std::max(0.0, second - mean * mean)) : 0.0;
@@ -234,8 +242,9 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   post.ci95_high = quantile(grid, cdf, 0.975);
   misfit(post.map, post.scale_at_map);
   const double tolerance = 1e-9 * (post.prior_high - post.prior_low);
-  post.at_prior_bound = (grid.front() <= post.prior_low + tolerance && post.density.front() > 1e-3 * post.density[best]) ||
-                        (grid.back() >= post.prior_high - tolerance && post.density.back() > 1e-3 * post.density[best]);
+  post.at_prior_bound =
+      (grid.front() <= post.prior_low + tolerance && post.density.front() > 1e-3 * post.density[best]) ||
+      (grid.back() >= post.prior_high - tolerance && post.density.back() > 1e-3 * post.density[best]);
   return post;
 }
 

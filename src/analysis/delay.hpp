@@ -24,10 +24,10 @@
 namespace rupture::analysis {
 
 struct DelayOptions {
-  double window_drop = 0.2;        // misfit summed where F_filtered >= (1 - window_drop) F_max
-  std::size_t grid_points = 2001;  // points of the final posterior grid
+  double window_drop = 0.2;                  // misfit summed where F_filtered >= (1 - window_drop) F_max
+  std::size_t grid_points = 2001;            // points of the final posterior grid
   double prior_low = 0.0, prior_high = 0.0;  // strain units; equal values = automatic
-  double noise_sigma = 0.0;        // force noise σ; 0 = estimate from the residual
+  double noise_sigma = 0.0;                  // force noise σ; 0 = estimate from the residual
 };
 
 struct DelayPosterior {
@@ -36,10 +36,10 @@ struct DelayPosterior {
   double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;  // equal-tailed
   double prior_low = 0.0, prior_high = 0.0;
   double noise_sigma = 0.0, misfit_scale = 0.0, correlation = 1.0;  // σ̂, s, τ
-  double scale_at_map = 0.0;           // c(δ_MAP)
-  double window_low = 0.0, window_high = 0.0;  // strain range of the misfit sum
+  double scale_at_map = 0.0;                                        // c(δ_MAP)
+  double window_low = 0.0, window_high = 0.0;                       // strain range of the misfit sum
   std::size_t window_samples = 0;
-  bool at_prior_bound = false;         // posterior mass reaches an end of the prior range
+  bool at_prior_bound = false;  // posterior mass reaches an end of the prior range
 };
 
 // x_i = x0 + i·step for all three curves. `force_peak` is the index of the filtered force maximum.

@@ -1,12 +1,11 @@
 #include "analysis/filters.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <complex>
 #include <numeric>
-
-#include <Eigen/Dense>
 
 namespace rupture::analysis {
 
@@ -42,8 +41,10 @@ std::vector<double> filter_with(const FilterSettings& s, std::span<const double>
       const auto sections = butterworth_lowpass(s.butterworth_order, s.cutoff);
       return sosfiltfilt(sections, y);
     }
-    case FilterKind::savitzky_golay: return savgol_filter(y, s.savgol_window, s.savgol_order);
-    case FilterKind::none: break;
+    case FilterKind::savitzky_golay:
+      return savgol_filter(y, s.savgol_window, s.savgol_order);
+    case FilterKind::none:
+      break;
   }
   return {y.begin(), y.end()};
 }
@@ -54,8 +55,10 @@ double choose_strength(const FilterSettings& base, std::span<const double> y) {
   const double bound = (1.0 + base.discrepancy) * sigma * sigma;
   FilterSettings s = base;
   const auto acceptable = [&](double strength) {
-    if (s.kind == FilterKind::butterworth) s.cutoff = strength;
-    else s.savgol_window = static_cast<int>(strength);
+    if (s.kind == FilterKind::butterworth)
+      s.cutoff = strength;
+    else
+      s.savgol_window = static_cast<int>(strength);
     return mean_square_difference(y, filter_with(s, y)) <= bound;
   };
   const double n = static_cast<double>(y.size());
@@ -248,7 +251,8 @@ double correlation_length(std::span<const double> residual) {
   for (std::size_t lag = 1; lag <= std::min<std::size_t>(n / 10, 1000); ++lag) {
     double sum = 0.0;
     std::size_t terms = 0;
-    for (std::size_t i = 0; i + lag < n; i += stride, ++terms) sum += (residual[i] - mean) * (residual[i + lag] - mean);
+    for (std::size_t i = 0; i + lag < n; i += stride, ++terms)
+      sum += (residual[i] - mean) * (residual[i + lag] - mean);
     const double rho = sum / (static_cast<double>(terms) * variance);
     if (rho <= 0.05) break;
     length += 2.0 * rho;
@@ -282,17 +286,22 @@ std::size_t minimum_samples(const FilterSettings& settings) {
       return 3 * (2 * sections + 1 - first_order) + 1;
     }
     case FilterKind::savitzky_golay:
-      return static_cast<std::size_t>(std::max(settings.savgol_window, odd_at_least(settings.savgol_order + 2)));
-    case FilterKind::none: break;
+      return static_cast<std::size_t>(
+          std::max(settings.savgol_window, odd_at_least(settings.savgol_order + 2)));
+    case FilterKind::none:
+      break;
   }
   return 1;
 }
 
 const char* to_string(FilterKind kind) {
   switch (kind) {
-    case FilterKind::butterworth: return "butterworth";
-    case FilterKind::savitzky_golay: return "savitzky_golay";
-    case FilterKind::none: return "none";
+    case FilterKind::butterworth:
+      return "butterworth";
+    case FilterKind::savitzky_golay:
+      return "savitzky_golay";
+    case FilterKind::none:
+      return "none";
   }
   return "?";
 }

@@ -65,10 +65,10 @@ inline constexpr int max_auto_savgol_window = 501;
 struct FilterSettings {
   FilterKind kind = FilterKind::butterworth;
   int butterworth_order = 4;
-  double cutoff = 0.0;        // Nyquist units; 0 = choose from the noise level
-  int savgol_window = 0;      // samples (odd); 0 = choose from the noise level
+  double cutoff = 0.0;    // Nyquist units; 0 = choose from the noise level
+  int savgol_window = 0;  // samples (odd); 0 = choose from the noise level
   int savgol_order = 3;
-  double discrepancy = 0.1;   // auto choice: allowed excess of the residual variance over sigma^2
+  double discrepancy = 0.1;  // auto choice: allowed excess of the residual variance over sigma^2
 };
 
 // Applies the filter. For an automatic setting, picks the strongest smoothing whose residual

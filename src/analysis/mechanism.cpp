@@ -1,28 +1,32 @@
 #include "analysis/mechanism.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
-#include <fmt/format.h>
-
 namespace rupture::analysis {
 
 namespace {
-std::string show(const std::optional<double>& v) { return v ? fmt::format("{:.3g}", *v) : std::string("n/a"); }
+std::string show(const std::optional<double>& v) {
+  return v ? fmt::format("{:.3g}", *v) : std::string("n/a");
+}
 
 std::string crack_text(const std::optional<CrackFeatures>& c) {
   if (!c) return "crack position unknown";
-  return fmt::format("main crack at height {:.2f} of l0 ({:.2f} from a plate, {:.0f} % of the collapse's breaks, "
-                     "{} crack plane{})",
-                     c->height, c->to_plate, 100.0 * c->localisation, c->planes, c->planes == 1 ? "" : "s");
+  return fmt::format(
+      "main crack at height {:.2f} of l0 ({:.2f} from a plate, {:.0f} % of the collapse's breaks, "
+      "{} crack plane{})",
+      c->height, c->to_plate, 100.0 * c->localisation, c->planes, c->planes == 1 ? "" : "s");
 }
 }  // namespace
 
 MechanismClass classify(const MechanismFeatures& f, const MechanismRules& rules) {
   if (f.force_maxima >= rules.ductile_force_maxima) {
-    return {Mechanism::ductile, fmt::format("{} significant force maxima (>= {})", f.force_maxima, rules.ductile_force_maxima)};
+    return {Mechanism::ductile,
+            fmt::format("{} significant force maxima (>= {})", f.force_maxima, rules.ductile_force_maxima)};
   }
   const bool slow_decay = !f.post_peak_decay || *f.post_peak_decay > rules.ductile_decay;
   if (f.energy_peak_width && *f.energy_peak_width >= rules.ductile_energy_width && slow_decay) {
@@ -31,11 +35,12 @@ MechanismClass classify(const MechanismFeatures& f, const MechanismRules& rules)
                                             show(f.post_peak_decay), rules.ductile_decay)};
   }
   if (f.loading_undulation && *f.loading_undulation >= rules.acoustic_undulation) {
-    return {Mechanism::semi_ductile,
-            fmt::format("acoustic waves in the loading phase: the force dips {} F_c (>= {}) below its running "
-                        "maximum before x_c; post-peak decay {} x_c; {}",
-                        show(f.loading_undulation), rules.acoustic_undulation, show(f.post_peak_decay),
-                        crack_text(f.crack))};
+    return {
+        Mechanism::semi_ductile,
+        fmt::format("acoustic waves in the loading phase: the force dips {} F_c (>= {}) below its running "
+                    "maximum before x_c; post-peak decay {} x_c; {}",
+                    show(f.loading_undulation), rules.acoustic_undulation, show(f.post_peak_decay),
+                    crack_text(f.crack))};
   }
   const bool fast = f.post_peak_decay && *f.post_peak_decay <= rules.fast_decay;
   const bool concentrated = !f.break_spread || *f.break_spread <= rules.concentrated_breaks;
@@ -51,18 +56,19 @@ MechanismClass classify(const MechanismFeatures& f, const MechanismRules& rules)
     // Otherwise the length of the elastic build-up decides: a collapse soon after the start of
     // loading is brittle, one after a long build-up hyper-elastic.
     if (f.critical_strain_percent && *f.critical_strain_percent < rules.brittle_strain_percent)
-      return {Mechanism::brittle, fmt::format("{}; collapse at x_c = {} % (< {} %); {}", how,
-                                              show(f.critical_strain_percent), rules.brittle_strain_percent,
-                                              crack_text(f.crack))};
-    return {Mechanism::hyper_elastic, fmt::format("{}; long elastic build-up, x_c = {} % (>= {} % or unknown); {}", how,
-                                                  show(f.critical_strain_percent), rules.brittle_strain_percent,
-                                                  crack_text(f.crack))};
+      return {Mechanism::brittle,
+              fmt::format("{}; collapse at x_c = {} % (< {} %); {}", how, show(f.critical_strain_percent),
+                          rules.brittle_strain_percent, crack_text(f.crack))};
+    return {Mechanism::hyper_elastic,
+            fmt::format("{}; long elastic build-up, x_c = {} % (>= {} % or unknown); {}", how,
+                        show(f.critical_strain_percent), rules.brittle_strain_percent, crack_text(f.crack))};
   }
   return {Mechanism::semi_ductile,
-          fmt::format("single force peak, gradual or multi-crack failure: post-peak decay {} x_c (fast <= {}), break "
-                      "spread {} x_c (concentrated <= {}), {}; Γ = {}",
-                      show(f.post_peak_decay), rules.fast_decay, show(f.break_spread), rules.concentrated_breaks,
-                      crack_text(f.crack), show(f.gamma))};
+          fmt::format(
+              "single force peak, gradual or multi-crack failure: post-peak decay {} x_c (fast <= {}), break "
+              "spread {} x_c (concentrated <= {}), {}; Γ = {}",
+              show(f.post_peak_decay), rules.fast_decay, show(f.break_spread), rules.concentrated_breaks,
+              crack_text(f.crack), show(f.gamma))};
 }
 
 std::optional<double> break_spread(std::span<const double> break_strains, double x_c) {
@@ -117,7 +123,8 @@ std::optional<CrackFeatures> crack_features(const BreakLog& breaks, double x_c) 
   // a particle, a band is l0/20).
   const int top = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
   double in_main = 0.0, sum_main = 0.0;
-  for (int b = std::max(0, top - 1); b <= std::min(bands - 1, top + 1); ++b) in_main += count[b], sum_main += height_sum[b];
+  for (int b = std::max(0, top - 1); b <= std::min(bands - 1, top + 1); ++b)
+    in_main += count[b], sum_main += height_sum[b];
   CrackFeatures c;
   c.height = sum_main / in_main;
   c.to_plate = std::min(c.height, 1.0 - c.height);
@@ -137,10 +144,14 @@ std::optional<CrackFeatures> crack_features(const BreakLog& breaks, double x_c) 
 
 const char* to_string(Mechanism mechanism) {
   switch (mechanism) {
-    case Mechanism::brittle: return "brittle";
-    case Mechanism::hyper_elastic: return "hyper-elastic";
-    case Mechanism::semi_ductile: return "semi-ductile";
-    case Mechanism::ductile: return "ductile";
+    case Mechanism::brittle:
+      return "brittle";
+    case Mechanism::hyper_elastic:
+      return "hyper-elastic";
+    case Mechanism::semi_ductile:
+      return "semi-ductile";
+    case Mechanism::ductile:
+      return "ductile";
   }
   return "?";
 }

@@ -27,24 +27,26 @@ struct CrackFeatures {
 
 struct MechanismFeatures {
   std::optional<double> critical_strain_percent;  // x_c in %, when the strain unit is % or 1
-  std::optional<double> energy_peak_width;    // strain width where E_e >= 0.9 E_max, over x_c
-  int force_maxima = 0;                       // local force maxima with prominence >= 5 % of F_c
-  std::optional<double> break_spread;         // (q90 − q10) of the bond-break strains, over x_c
-  std::optional<double> post_peak_decay;      // (x at F = F_c/2 after the peak − x_c) / x_c; none if F stays above
-  std::optional<double> loading_undulation;   // deepest dip of F below its running maximum before x_c, over F_c
-  std::optional<CrackFeatures> crack;         // from the break heights (none without heights or < 10 breaks)
-  std::optional<double> gamma;                // Γ
+  std::optional<double> energy_peak_width;        // strain width where E_e >= 0.9 E_max, over x_c
+  int force_maxima = 0;                           // local force maxima with prominence >= 5 % of F_c
+  std::optional<double> break_spread;             // (q90 − q10) of the bond-break strains, over x_c
+  std::optional<double>
+      post_peak_decay;  // (x at F = F_c/2 after the peak − x_c) / x_c; none if F stays above
+  std::optional<double>
+      loading_undulation;              // deepest dip of F below its running maximum before x_c, over F_c
+  std::optional<CrackFeatures> crack;  // from the break heights (none without heights or < 10 breaks)
+  std::optional<double> gamma;         // Γ
 };
 
 struct MechanismRules {
-  int ductile_force_maxima = 3;          // this many significant force maxima: ductile
-  double ductile_energy_width = 1.0;     // or an E_e peak this wide (relative to x_c) with slow decay
-  double ductile_decay = 1.0;            // "slow": F needs more than this (relative to x_c) to halve
-  double acoustic_undulation = 0.05;     // semi-ductile: the loading force dips this far (over F_c) before x_c
-  double fast_decay = 0.2;               // brittle/hyper-elastic: F halves within this (relative to x_c)
-  double concentrated_breaks = 0.5;      // brittle/hyper-elastic: central 80 % of breaks within this (over x_c)
-  double near_plate = 0.2;               // brittle: the main crack this close to a glued layer (of l0) ...
-  double brittle_strain_percent = 2.0;   // ... or the collapse below this x_c (%); above: hyper-elastic
+  int ductile_force_maxima = 3;       // this many significant force maxima: ductile
+  double ductile_energy_width = 1.0;  // or an E_e peak this wide (relative to x_c) with slow decay
+  double ductile_decay = 1.0;         // "slow": F needs more than this (relative to x_c) to halve
+  double acoustic_undulation = 0.05;  // semi-ductile: the loading force dips this far (over F_c) before x_c
+  double fast_decay = 0.2;            // brittle/hyper-elastic: F halves within this (relative to x_c)
+  double concentrated_breaks = 0.5;   // brittle/hyper-elastic: central 80 % of breaks within this (over x_c)
+  double near_plate = 0.2;            // brittle: the main crack this close to a glued layer (of l0) ...
+  double brittle_strain_percent = 2.0;  // ... or the collapse below this x_c (%); above: hyper-elastic
 };
 
 enum class Mechanism { brittle, hyper_elastic, semi_ductile, ductile };

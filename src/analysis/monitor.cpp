@@ -1,10 +1,9 @@
 #include "analysis/monitor.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <span>
-
-#include <Eigen/Dense>
 
 #include "analysis/peak_fit.hpp"
 #include "fbm/power_law.hpp"
@@ -74,11 +73,13 @@ std::optional<Warning> Monitor::add_point(double strain, double force, double en
   }
   if (f.slope <= 0.0 && !warning_) {
     // Once the force has fallen for a while, a late confirmation would be no warning at all.
-    if (force_smooth_[k] < (1.0 - options_.drop) * *std::max_element(force_smooth_.begin(), force_smooth_.end())) {
+    if (force_smooth_[k] <
+        (1.0 - options_.drop) * *std::max_element(force_smooth_.begin(), force_smooth_.end())) {
       force_peaked_ = true;
     }
   }
-  if (warning_ || force_peaked_ || below_ < options_.confirm || f.slope <= 0.0 || rate_top_ == 0) return std::nullopt;
+  if (warning_ || force_peaked_ || below_ < options_.confirm || f.slope <= 0.0 || rate_top_ == 0)
+    return std::nullopt;
   // Confirmed: x_p and ℰ_max from a cubic fit to the ℰ history around its maximum.
   const auto fit = fit_peak(centre_, rate_, rate_error_, static_cast<double>(w));
   if (!fit.found) return std::nullopt;
@@ -91,7 +92,8 @@ std::optional<Warning> Monitor::add_point(double strain, double force, double en
   warning.Erate_max = fit.value;
   warning.Erate_max_error = fit.value_error;
   using namespace fbm::power_law;
-  const double x_p_low = fit.x - options_.sigmas * fit.x_error, x_p_high = fit.x + options_.sigmas * fit.x_error;
+  const double x_p_low = fit.x - options_.sigmas * fit.x_error,
+               x_p_high = fit.x + options_.sigmas * fit.x_error;
   // r(α) = x_c/x_p decreases with α.
   warning.x_c = {x_p_low * critical_to_precursor_ratio(options_.alpha_high),
                  x_p_high * critical_to_precursor_ratio(options_.alpha_low)};

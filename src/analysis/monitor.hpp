@@ -27,11 +27,11 @@
 namespace rupture::analysis {
 
 struct MonitorOptions {
-  std::size_t window = 41;     // samples per causal cubic fit
-  double drop = 0.03;          // fraction of the running ℰ maximum that ℰ must fall below it
-  std::size_t confirm = 10;    // consecutive samples below that level to confirm the maximum
+  std::size_t window = 41;   // samples per causal cubic fit
+  double drop = 0.03;        // fraction of the running ℰ maximum that ℰ must fall below it
+  std::size_t confirm = 10;  // consecutive samples below that level to confirm the maximum
   double alpha_low = 0.0, alpha_high = 5.0;  // FBM exponent range of the predictions
-  double sigmas = 2.0;         // widen x_p and ℰ_max by this many standard errors
+  double sigmas = 2.0;                       // widen x_p and ℰ_max by this many standard errors
 };
 
 struct Interval {
@@ -40,13 +40,13 @@ struct Interval {
 };
 
 struct Warning {
-  std::size_t sample = 0;      // 0-based index of the sample that confirmed the maximum
-  double strain = 0.0;         // strain of that sample (strain units of the input)
-  double force = 0.0;          // force of that sample
-  double x_p = 0.0, x_p_error = 0.0;          // precursor strain and its standard error
+  std::size_t sample = 0;                         // 0-based index of the sample that confirmed the maximum
+  double strain = 0.0;                            // strain of that sample (strain units of the input)
+  double force = 0.0;                             // force of that sample
+  double x_p = 0.0, x_p_error = 0.0;              // precursor strain and its standard error
   double Erate_max = 0.0, Erate_max_error = 0.0;  // ℰ_max (energy / strain unit)
-  Interval x_c;                // predicted critical strain
-  Interval E_max;              // predicted maximum elastic energy (energy released at failure)
+  Interval x_c;                                   // predicted critical strain
+  Interval E_max;  // predicted maximum elastic energy (energy released at failure)
   // The warning comes (window/2 + confirm) rows after x_p. It is in time when it comes before the
   // earliest predicted x_c; otherwise the rows are too far apart, and rows at most
   // `max_row_spacing` apart (strain units) would have warned in time.
@@ -57,8 +57,8 @@ struct Warning {
 struct MonitorSummary {
   std::size_t samples = 0;
   std::optional<Warning> warning;
-  std::optional<double> x_c, E_max;  // observed afterwards (cubic fits to the smoothed history)
-  std::optional<double> lead;        // x_c − warning strain
+  std::optional<double> x_c, E_max;          // observed afterwards (cubic fits to the smoothed history)
+  std::optional<double> lead;                // x_c − warning strain
   std::optional<bool> x_c_held, E_max_held;  // observed values inside the predicted intervals
   bool force_peaked_before_warning = false;  // the force maximum passed before any confirmation
 };
@@ -85,9 +85,9 @@ class Monitor {
   std::vector<double> strain_, force_, energy_;  // raw samples
   // Causal estimates at window centres.
   std::vector<double> centre_, rate_, force_smooth_, energy_smooth_;
-  double rate_error_ = 0.0;     // standard error of the latest ℰ estimate
-  std::size_t rate_top_ = 0;    // index (in the estimates) of the running ℰ maximum
-  std::size_t below_ = 0;       // consecutive estimates below the confirmation level
+  double rate_error_ = 0.0;   // standard error of the latest ℰ estimate
+  std::size_t rate_top_ = 0;  // index (in the estimates) of the running ℰ maximum
+  std::size_t below_ = 0;     // consecutive estimates below the confirmation level
   bool force_peaked_ = false;
   std::optional<Warning> warning_;
 };

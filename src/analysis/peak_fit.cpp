@@ -1,10 +1,10 @@
 #include "analysis/peak_fit.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <fmt/format.h>
 
 #include <Eigen/Dense>
-#include <fmt/format.h>
+#include <algorithm>
+#include <cmath>
 
 namespace rupture::analysis {
 
@@ -46,7 +46,8 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   double best_t = 0.0;
   bool have = false;
   const auto consider = [&](double t) {
-    if (2.0 * a(2) + 6.0 * a(3) * t < 0.0 && std::abs(t) <= 1.0 && (!have || std::abs(t) < std::abs(best_t))) {
+    if (2.0 * a(2) + 6.0 * a(3) * t < 0.0 && std::abs(t) <= 1.0 &&
+        (!have || std::abs(t) < std::abs(best_t))) {
       best_t = t;
       have = true;
     }
@@ -66,7 +67,8 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
     }
   }
   if (!have) {
-    fit.problem = fmt::format("no maximum of the cubic fit within [{:.6g}, {:.6g}]", fit.window_low, fit.window_high);
+    fit.problem =
+        fmt::format("no maximum of the cubic fit within [{:.6g}, {:.6g}]", fit.window_low, fit.window_high);
     return fit;
   }
   const double t = best_t;
@@ -79,7 +81,8 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   const Eigen::Vector4d slope_gradient(0.0, 1.0, 2.0 * t, 3.0 * t * t);
   const Eigen::Vector4d value_gradient(1.0, t, t * t, t * t * t);
   const double curvature = 2.0 * a(2) + 6.0 * a(3) * t;
-  fit.x_error = half_width * std::sqrt(variance_scale * slope_gradient.dot(inverse * slope_gradient)) / std::abs(curvature);
+  fit.x_error = half_width * std::sqrt(variance_scale * slope_gradient.dot(inverse * slope_gradient)) /
+                std::abs(curvature);
   fit.value_error = std::sqrt(variance_scale * value_gradient.dot(inverse * value_gradient));
   return fit;
 }
@@ -115,7 +118,8 @@ std::vector<std::size_t> significant_maxima(std::span<const double> y, double mi
     // SciPy's definition: walk each way until a higher sample (or the end); the base is the higher
     // of the two lowest points met.
     double left_low = height, right_low = height;
-    for (std::size_t j = k; j-- > 0 && extrema[j].value <= height;) left_low = std::min(left_low, extrema[j].value);
+    for (std::size_t j = k; j-- > 0 && extrema[j].value <= height;)
+      left_low = std::min(left_low, extrema[j].value);
     for (std::size_t j = k + 1; j < extrema.size() && extrema[j].value <= height; ++j) {
       right_low = std::min(right_low, extrema[j].value);
     }

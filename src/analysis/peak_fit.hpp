@@ -20,12 +20,12 @@ struct PeakFitOptions {
 
 struct PeakFit {
   bool found = false;
-  std::string problem;               // why not found
-  double x = 0.0, value = 0.0;       // stationary point of the cubic and the cubic's value there
-  double x_error = 0.0, value_error = 0.0;  // 1-sigma, from the fit's covariance (see fit_peak)
+  std::string problem;                         // why not found
+  double x = 0.0, value = 0.0;                 // stationary point of the cubic and the cubic's value there
+  double x_error = 0.0, value_error = 0.0;     // 1-sigma, from the fit's covariance (see fit_peak)
   double window_low = 0.0, window_high = 0.0;  // strain range of the fit
-  std::size_t points = 0;            // samples in the fit
-  std::size_t index = 0;             // index of the largest sample
+  std::size_t points = 0;                      // samples in the fit
+  std::size_t index = 0;                       // index of the largest sample
 };
 
 // Fits a cubic to (x, y) around the largest y. `noise` is the per-sample standard deviation of the

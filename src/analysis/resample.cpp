@@ -7,8 +7,8 @@
 
 namespace rupture::analysis {
 
-UniformCurves resample_uniform(std::span<const double> strain, std::span<const std::span<const double>> curves,
-                               ResampleReport& report) {
+UniformCurves resample_uniform(std::span<const double> strain,
+                               std::span<const std::span<const double>> curves, ResampleReport& report) {
   const std::size_t n = strain.size();
   report = ResampleReport{};
   report.input_rows = n;
@@ -16,7 +16,8 @@ UniformCurves resample_uniform(std::span<const double> strain, std::span<const s
   std::iota(order.begin(), order.end(), std::size_t{0});
   report.was_sorted = std::is_sorted(strain.begin(), strain.end());
   if (!report.was_sorted) {
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return strain[a] < strain[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return strain[a] < strain[b]; });
   }
   // Merge equal strains by averaging.
   std::vector<double> xs;

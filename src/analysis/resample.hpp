@@ -10,13 +10,13 @@ namespace rupture::analysis {
 
 struct ResampleReport {
   std::size_t input_rows = 0;
-  bool was_sorted = true;           // strain non-decreasing in the input order
+  bool was_sorted = true;             // strain non-decreasing in the input order
   std::size_t duplicates_merged = 0;  // rows whose strain repeated an earlier one (values averaged)
-  bool was_uniform = true;          // spacing equal to within 1e-6 of the mean step
-  bool resampled = false;           // linear interpolation onto a uniform grid was needed
+  bool was_uniform = true;            // spacing equal to within 1e-6 of the mean step
+  bool resampled = false;             // linear interpolation onto a uniform grid was needed
   std::size_t output_rows = 0;
-  std::size_t block_average = 1;    // samples averaged into one (average_blocks)
-  double step = 0.0;                // grid spacing, strain units
+  std::size_t block_average = 1;  // samples averaged into one (average_blocks)
+  double step = 0.0;              // grid spacing, strain units
 };
 
 // Curves sampled on x = x0 + i * step.
@@ -30,8 +30,8 @@ struct UniformCurves {
 // Sorts by strain (stable), averages rows with equal strain, and when the spacing is not uniform
 // interpolates linearly onto a uniform grid over the same range with as many points as distinct
 // strains. `curves` are columns aligned with `strain`. Needs at least two distinct strains.
-UniformCurves resample_uniform(std::span<const double> strain, std::span<const std::span<const double>> curves,
-                               ResampleReport& report);
+UniformCurves resample_uniform(std::span<const double> strain,
+                               std::span<const std::span<const double>> curves, ResampleReport& report);
 
 // Averages blocks of k consecutive samples, k the smallest that leaves at most `max_samples`
 // (a trailing partial block is dropped): a curve sampled far more densely than its features needs

@@ -1,16 +1,17 @@
 // cli/analyze_command: `rupture analyze CURVES.csv` — the precursor analysis of one loading curve
 // (src/analysis): writes analysis.json and prints a short summary. Exit 0 accepted, 4 analysed but
 // rejected (reason printed), 2 bad input.
-#include <filesystem>
-#include <memory>
-#include <string>
+#include "cli/analyze_command.hpp"
 
 #include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "analysis/analysis.hpp"
 #include "analysis/curve_file.hpp"
-#include "cli/analyze_command.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -19,9 +20,9 @@ namespace rupture::cli {
 
 namespace {
 
-
 std::string with_error(const analysis::Measured& m) {
-  return m.error > 0.0 ? fmt::format("{:.6g} ± {:.2g} {}", m.value, m.error, m.unit) : fmt::format("{:.6g} {}", m.value, m.unit);
+  return m.error > 0.0 ? fmt::format("{:.6g} ± {:.2g} {}", m.value, m.error, m.unit)
+                       : fmt::format("{:.6g} {}", m.value, m.unit);
 }
 
 // The text summary on `out` (stderr when the document itself goes to stdout with -o -).
@@ -29,11 +30,14 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   for (const auto& warning : r.warnings) fmt::print(stderr, "rupture analyze: warning: {}\n", warning);
   fmt::print(out, "{}: {} rows", r.source, r.resample.input_rows);
   if (r.resample.resampled || r.resample.duplicates_merged > 0 || r.resample.block_average > 1) {
-    fmt::print(out, " ({}{}{} -> {} uniform rows)",
-               r.resample.duplicates_merged > 0 ? fmt::format("{} duplicates merged, ", r.resample.duplicates_merged) : "",
-               r.resample.resampled ? "resampled" : "uniform",
-               r.resample.block_average > 1 ? fmt::format(", averaged in blocks of {}", r.resample.block_average) : "",
-               r.resample.output_rows);
+    fmt::print(
+        out, " ({}{}{} -> {} uniform rows)",
+        r.resample.duplicates_merged > 0 ? fmt::format("{} duplicates merged, ", r.resample.duplicates_merged)
+                                         : "",
+        r.resample.resampled ? "resampled" : "uniform",
+        r.resample.block_average > 1 ? fmt::format(", averaged in blocks of {}", r.resample.block_average)
+                                     : "",
+        r.resample.output_rows);
   }
   fmt::print(out, "\n  filter      {}", analysis::to_string(r.filter.kind));
   if (r.filter.kind == analysis::FilterKind::butterworth) {
@@ -53,25 +57,30 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   line("E_max", r.E_max);
   if (r.delay) {
     const auto& d = *r.delay;
-    fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n", d.mean, d.sd,
-               r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
+    fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n",
+               d.mean, d.sd, r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high,
+               d.ci95_low, d.ci95_high);
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);
-  if (r.alpha.alpha) fmt::print(out, "  alpha       {:.3g} (from delta_x/x_p, FBM power law)\n", *r.alpha.alpha);
+  if (r.alpha.alpha)
+    fmt::print(out, "  alpha       {:.3g} (from delta_x/x_p, FBM power law)\n", *r.alpha.alpha);
   if (r.alpha.gamma_in_band || r.alpha.energy_ratio_in_band) {
     const auto yes_no = [](const std::optional<bool>& b) { return b ? (*b ? "yes" : "no") : "n/a"; };
-    fmt::print(out, "  FBM band    Gamma in [{:.3g}, {:.3g}]: {}; A_r in [{:.3g}, {:.3g}]: {}\n", r.alpha.gamma_band_low,
-               r.alpha.gamma_band_high, yes_no(r.alpha.gamma_in_band), r.alpha.energy_ratio_band_low,
-               r.alpha.energy_ratio_band_high, yes_no(r.alpha.energy_ratio_in_band));
+    fmt::print(out, "  FBM band    Gamma in [{:.3g}, {:.3g}]: {}; A_r in [{:.3g}, {:.3g}]: {}\n",
+               r.alpha.gamma_band_low, r.alpha.gamma_band_high, yes_no(r.alpha.gamma_in_band),
+               r.alpha.energy_ratio_band_low, r.alpha.energy_ratio_band_high,
+               yes_no(r.alpha.energy_ratio_in_band));
   }
   if (r.mechanism)
     fmt::print(out, "  mechanism   {} ({})\n",
                r.accepted ? analysis::to_string(r.mechanism->mechanism)
-                          : fmt::format("none, rejected; the features say {}", analysis::to_string(r.mechanism->mechanism)),
+                          : fmt::format("none, rejected; the features say {}",
+                                        analysis::to_string(r.mechanism->mechanism)),
                r.mechanism->reason);
   fmt::print(out, "  {}\n", r.accepted ? "accepted" : "REJECTED: " + r.rejection);
-  fmt::print(out, "  wrote {}\n", output == "-" ? std::string("the document to standard output") : output.string());
+  fmt::print(out, "  wrote {}\n",
+             output == "-" ? std::string("the document to standard output") : output.string());
 }
 
 }  // namespace
@@ -83,9 +92,11 @@ void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns) {
   cmd.add_option("--strain-scale", columns.strain_scale, "Multiply the strain column by this");
   cmd.add_option("--force-scale", columns.force_scale, "Multiply the force column by this");
   cmd.add_option("--energy-scale", columns.energy_scale, "Multiply the energy column by this");
-  cmd.add_option("--strain-unit", columns.strain_unit, "Strain unit after scaling (default: from the header)");
+  cmd.add_option("--strain-unit", columns.strain_unit,
+                 "Strain unit after scaling (default: from the header)");
   cmd.add_option("--force-unit", columns.force_unit, "Force unit after scaling (default: from the header)");
-  cmd.add_option("--energy-unit", columns.energy_unit, "Energy unit after scaling (default: from the header)");
+  cmd.add_option("--energy-unit", columns.energy_unit,
+                 "Energy unit after scaling (default: from the header)");
 }
 
 AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
@@ -96,8 +107,8 @@ AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
   inputs.columns = options.columns;
   inputs.options = options.analysis;
   const auto analysed = analysis::analyze_curve_file(inputs, "rupture analyze");
-  const std::filesystem::path output =
-      options.output.empty() ? inputs.curves.parent_path() / "analysis.json" : std::filesystem::path(options.output);
+  const std::filesystem::path output = options.output.empty() ? inputs.curves.parent_path() / "analysis.json"
+                                                              : std::filesystem::path(options.output);
   io::write_output(output, analysed.document.dump(2) + "\n");
   print_summary(analysed.result, output, output == "-" ? stderr : stdout);
   return {analysed.result, output};
@@ -105,44 +116,62 @@ AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {
 
 void add_analyze_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<AnalyzeOptions>();
-  auto* cmd = app.add_subcommand("analyze", "Analyse a loading curve for the precursor of failure (x_c, x_p, delta_x, Gamma, A_r, class)");
-  cmd->add_option("curves", o->curves, "CSV with a header: rupture's curves.csv, an FBM curve, or any table (name the columns)")
+  auto* cmd = app.add_subcommand(
+      "analyze",
+      "Analyse a loading curve for the precursor of failure (x_c, x_p, delta_x, Gamma, A_r, class)");
+  cmd->add_option("curves", o->curves,
+                  "CSV with a header: rupture's curves.csv, an FBM curve, or any table (name the columns)")
       ->required();
-  cmd->add_option("-o,--out,--output", o->output, "Result file (default: analysis.json beside the curves; - for stdout)");
-  cmd->add_option("--breaks", o->breaks, "Bond-break table with a strain column (default: breaks.csv beside the curves, if present)");
+  cmd->add_option("-o,--out,--output", o->output,
+                  "Result file (default: analysis.json beside the curves; - for stdout)");
+  cmd->add_option(
+      "--breaks", o->breaks,
+      "Bond-break table with a strain column (default: breaks.csv beside the curves, if present)");
   cmd->add_flag("--no-breaks", o->no_breaks, "Ignore any breaks.csv");
   add_curve_column_options(*cmd, o->columns);
   cmd->add_option("--filter", o->filter, "Zero-phase low-pass for F and E_e: butterworth | savgol | none")
       ->check(CLI::IsMember({"butterworth", "savgol", "none"}));
-  cmd->add_option("--cutoff", o->analysis.filter.cutoff, "Butterworth cutoff in units of the Nyquist frequency (0 < c < 1; default: from the noise)")
+  cmd->add_option("--cutoff", o->analysis.filter.cutoff,
+                  "Butterworth cutoff in units of the Nyquist frequency (0 < c < 1; default: from the noise)")
       ->check(CLI::Range(0.0, 0.999));
-  cmd->add_option("--order", o->analysis.filter.butterworth_order, "Butterworth order")->check(CLI::Range(1, 12));
-  cmd->add_option("--window", o->analysis.filter.savgol_window, "Savitzky-Golay smoothing window in samples (odd; default: from the noise)");
-  cmd->add_option("--derivative-window", o->analysis.derivative_window, "Samples of the cubic Savitzky-Golay derivative (odd; default: from the filter)");
-  cmd->add_option("--peak-drop", o->analysis.peak.drop, "Peak fits use the samples within this fraction of the maximum")
+  cmd->add_option("--order", o->analysis.filter.butterworth_order, "Butterworth order")
+      ->check(CLI::Range(1, 12));
+  cmd->add_option("--window", o->analysis.filter.savgol_window,
+                  "Savitzky-Golay smoothing window in samples (odd; default: from the noise)");
+  cmd->add_option("--derivative-window", o->analysis.derivative_window,
+                  "Samples of the cubic Savitzky-Golay derivative (odd; default: from the filter)");
+  cmd->add_option("--peak-drop", o->analysis.peak.drop,
+                  "Peak fits use the samples within this fraction of the maximum")
       ->check(CLI::Range(0.001, 0.9));
   cmd->add_option("--delay-method", o->delay_method,
-                  "delta_x from the fitted maxima (fitted-maxima, default) or by the paper's l1 shift of the energy rate onto F (shift-l1)")
+                  "delta_x from the fitted maxima (fitted-maxima, default) or by the paper's l1 shift of the "
+                  "energy rate onto F (shift-l1)")
       ->check(CLI::IsMember({"fitted-maxima", "shift-l1"}));
   cmd->add_option("--max-samples", o->analysis.max_samples,
                   "Denser curves are averaged in blocks down to this many samples (0: never)");
-  cmd->add_option("--replicates", o->analysis.uncertainty.replicates, "Noise replicates of the bootstrap that gives every uncertainty")
+  cmd->add_option("--replicates", o->analysis.uncertainty.replicates,
+                  "Noise replicates of the bootstrap that gives every uncertainty")
       ->check(CLI::Range(20, 100000));
   cmd->add_option("--seed", o->analysis.uncertainty.seed, "Seed of the bootstrap's noise replicates");
-  cmd->add_option("--delay-window", o->analysis.delay.window_drop, "shift-l1: delta_x misfit over F >= (1 - this) F_c")
+  cmd->add_option("--delay-window", o->analysis.delay.window_drop,
+                  "shift-l1: delta_x misfit over F >= (1 - this) F_c")
       ->check(CLI::Range(0.01, 0.9));
-  cmd->add_option("--grid-points", o->analysis.delay.grid_points, "shift-l1: points of the posterior grid")->check(CLI::Range(101, 100001));
+  cmd->add_option("--grid-points", o->analysis.delay.grid_points, "shift-l1: points of the posterior grid")
+      ->check(CLI::Range(101, 100001));
   cmd->callback([o, &exit_code] {
     auto& a = o->analysis;
-    a.delay_method = o->delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
+    a.delay_method = o->delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1
+                                                   : analysis::DelayMethod::fitted_maxima;
     a.filter.kind = o->filter == "savgol" ? analysis::FilterKind::savitzky_golay
                     : o->filter == "none" ? analysis::FilterKind::none
                                           : analysis::FilterKind::butterworth;
     if (a.filter.savgol_window > 0 && a.filter.savgol_window % 2 == 0) {
-      throw InputError("--window", fmt::format("{} is even", a.filter.savgol_window), "give an odd number of samples");
+      throw InputError("--window", fmt::format("{} is even", a.filter.savgol_window),
+                       "give an odd number of samples");
     }
     if (a.derivative_window > 0 && (a.derivative_window % 2 == 0 || a.derivative_window < 5)) {
-      throw InputError("--derivative-window", fmt::format("{} is not an odd number >= 5", a.derivative_window),
+      throw InputError("--derivative-window",
+                       fmt::format("{} is not an odd number >= 5", a.derivative_window),
                        "give an odd number of samples, at least 5");
     }
     const auto outcome = analyze_and_write(*o);

@@ -3,9 +3,8 @@
 // summary — shared with `rupture study`.
 #pragma once
 
-#include <filesystem>
-
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <string>
 
 #include "analysis/analysis.hpp"

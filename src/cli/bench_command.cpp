@@ -131,8 +131,8 @@ nlohmann::json bench_run(const BenchOptions& options, int threads) {
   loading::RunConfig config = loading::load_config(options.run, options.overrides);
   config.threads = threads;
   const Sample sample = loading::resolve_sample(config);
-  const auto folder = std::filesystem::temp_directory_path() /
-                      fmt::format("rupture-bench-run-{}-{}", ::getpid(), threads);
+  const auto folder =
+      std::filesystem::temp_directory_path() / fmt::format("rupture-bench-run-{}-{}", ::getpid(), threads);
   std::filesystem::remove_all(folder);
   loading::RunOptions run_options;
   run_options.echo_monitor = false;
@@ -179,14 +179,18 @@ void print_run_benches(const BenchOptions& options) {
     if (options.json) continue;
     const double wall = r["wall_s"].get<double>();
     const auto& stages = r["stage_seconds"];
-    fmt::print("{:>7} {:>9} {:>9.3f} {:>8.3f} {:>12.4g} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} {:>16}\n", threads,
-               r["steps"].get<std::uint64_t>(), wall, r["cpu_s"].get<double>(),
+    fmt::print("{:>7} {:>9} {:>9.3f} {:>8.3f} {:>12.4g} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} {:>16}\n",
+               threads, r["steps"].get<std::uint64_t>(), wall, r["cpu_s"].get<double>(),
                r["particle_steps_per_s"].get<double>(), 100 * stages["forces"].get<double>() / wall,
-               100 * stages["integrate"].get<double>() / wall, 100 * stages["neighbours"].get<double>() / wall,
-               r["neighbour_rebuilds"].get<std::uint64_t>(), r["outputs_hash"].get<std::string>());
+               100 * stages["integrate"].get<double>() / wall,
+               100 * stages["neighbours"].get<double>() / wall, r["neighbour_rebuilds"].get<std::uint64_t>(),
+               r["outputs_hash"].get<std::string>());
   }
   if (options.json)
-    fmt::print("{}\n", nlohmann::json{{"tool", "rupture bench --run"}, {"version", version_string}, {"results", results}}.dump(2));
+    fmt::print(
+        "{}\n",
+        nlohmann::json{{"tool", "rupture bench --run"}, {"version", version_string}, {"results", results}}
+            .dump(2));
 }
 
 }  // namespace

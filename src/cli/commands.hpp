@@ -9,7 +9,7 @@ namespace rupture::cli {
 
 void add_fbm_command(CLI::App& app, int& exit_code);
 void add_sample_command(CLI::App& app, int& exit_code);
-void add_run_commands(CLI::App& app, int& exit_code);      // run, check
+void add_run_commands(CLI::App& app, int& exit_code);  // run, check
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_analyze_command(CLI::App& app, int& exit_code);
 void add_monitor_command(CLI::App& app, int& exit_code);

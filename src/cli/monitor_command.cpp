@@ -139,8 +139,9 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--poll", o->poll_ms, "Milliseconds between reads of a followed file")
       ->check(CLI::Range(1, 60000));
-  cmd->add_flag("--json", o->json,
-                "Print the warning and the outcome as one JSON document at the end (the live warning goes to stderr)");
+  cmd->add_flag(
+      "--json", o->json,
+      "Print the warning and the outcome as one JSON document at the end (the live warning goes to stderr)");
   add_curve_column_options(*cmd, o->columns);
   cmd->add_option("--window", o->monitor.window, "Samples in each causal cubic fit")
       ->check(CLI::Range(7, 100000));
@@ -170,14 +171,16 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       const double e = o->columns.energy_scale * row[columns->energy];
       if (const auto w = monitor->add_point(x, f, e)) {
         std::FILE* live = o->json ? stderr : stdout;  // --json keeps stdout for the document
-        fmt::print(live,
+        fmt::print(
+            live,
             "WARNING at strain {:.6g} {}: energy-rate maximum passed (x_p = {:.6g} ± {:.2g} {}) while the "
             "force "
             "still rises; predicted x_c in {} {}, E_max in {} {} (FBM, 0 <= alpha <= 5)\n",
             w->strain, columns->strain_unit, w->x_p, w->x_p_error, columns->strain_unit, interval(w->x_c),
             columns->strain_unit, interval(w->E_max), columns->energy_unit);
         if (!w->in_time) {
-          fmt::print(live,
+          fmt::print(
+              live,
               "the rows are too far apart to warn in time: this warning comes after the earliest predicted "
               "x_c; "
               "rows at most {:.3g} {} apart would have warned before it\n",

@@ -67,8 +67,9 @@ void print_check(const loading::RunConfig& config, const Sample& sample, const l
              plan.ramp_time, plan.plate_separation);
   fmt::print("plate speed / wave speed: {:.3g} ({:g} mm/s vs {:.4g} mm/s)\n", plan.speed_ratio, config.speed,
              plan.wave_speed);
-  fmt::print("first bond break expected near strain {:.3g} % (the most stretched bond under an affine pull)\n",
-             plan.first_break_strain);
+  fmt::print(
+      "first bond break expected near strain {:.3g} % (the most stretched bond under an affine pull)\n",
+      plan.first_break_strain);
   fmt::print(
       "estimate: at most {} steps (to stop.max_strain {} % or stop.max_steps), about {:.3g} s of wall time\n",
       plan.estimated_steps, config.max_strain, plan.estimated_seconds);

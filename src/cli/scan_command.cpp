@@ -59,8 +59,8 @@ void print_plan(const scan::Plan& plan) {
   fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13} {:>15}\n", "point", "folder", "k_n[N/mm]", "b_d[mm]",
              "ramp_steps", "max_strain[%]", "row_interval[1]");
   for (const auto& p : plan.points)
-    fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13} {:>15}\n", p.index, p.name, p.k_n, p.b_d, p.ramp_steps,
-               p.max_strain, p.output_interval);
+    fmt::print("{:>5}  {:<32} {:>12} {:>10} {:>11} {:>13} {:>15}\n", p.index, p.name, p.k_n, p.b_d,
+               p.ramp_steps, p.max_strain, p.output_interval);
   fmt::print("{} points into {}; a job array needs --array=0-{}\n", plan.points.size(), plan.folder.string(),
              plan.points.size() - 1);
 }
@@ -68,9 +68,10 @@ void print_plan(const scan::Plan& plan) {
 void run(const ScanOptions& o) {
   if (!o.claims_folders.empty()) {
     for (const auto& folder : o.claims_folders)
-      fmt::print("{}", scan::claims_markdown(scan::check_claims(scan::read_results(std::filesystem::path(folder) /
-                                                                                    "results.csv")),
-                                             folder));
+      fmt::print(
+          "{}",
+          scan::claims_markdown(
+              scan::check_claims(scan::read_results(std::filesystem::path(folder) / "results.csv")), folder));
     return;
   }
   if (!o.status_folder.empty()) {
@@ -82,7 +83,8 @@ void run(const ScanOptions& o) {
                      "run `rupture scan SCAN.toml` (see docs/scan.md)");
   if (o.reanalyze) {
     if (!std::filesystem::is_directory(o.target))
-      throw InputError(o.target, "--reanalyze needs a scan folder", "give the folder a scan wrote ([scan] output)");
+      throw InputError(o.target, "--reanalyze needs a scan folder",
+                       "give the folder a scan wrote ([scan] output)");
     const scan::Plan plan = scan::read_plan(o.target);
     std::size_t done = 0;
     for (const auto& point : plan.points) done += scan::reanalyze_point(plan, point);
@@ -142,8 +144,9 @@ void add_scan_command(CLI::App& app, int& /*exit_code*/) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--collect", o->collect,
                 "Write results.csv and scan.json from the finished points, run nothing");
-  cmd->add_flag("--reanalyze", o->reanalyze,
-                "Analyse every finished point of a scan folder again (the runs are kept), then rewrite results.csv");
+  cmd->add_flag(
+      "--reanalyze", o->reanalyze,
+      "Analyse every finished point of a scan folder again (the runs are kept), then rewrite results.csv");
   cmd->add_option("--status", o->status_folder,
                   "Show every point of the scan in this folder: done, failed, running, pending");
   cmd->add_option("--claims", o->claims_folders,

@@ -109,13 +109,15 @@ std::string command_line(const StudyOptions& o) {
 
 // The scan of the study, planned (every point's config checked) before anything runs; with --no-scan
 // none, and an earlier study's scan is removed so that it cannot enter this report.
-std::optional<scan::Plan> plan_scan(const StudyOptions& o, const std::filesystem::path& out, const Sample& sample) {
+std::optional<scan::Plan> plan_scan(const StudyOptions& o, const std::filesystem::path& out,
+                                    const Sample& sample) {
   if (o.no_scan) {
     std::filesystem::remove_all(out / "scan");
     std::filesystem::remove(out / "scan.toml");
     return std::nullopt;
   }
-  const std::filesystem::path scan_file = o.scan_config.empty() ? out / "scan.toml" : std::filesystem::path(o.scan_config);
+  const std::filesystem::path scan_file =
+      o.scan_config.empty() ? out / "scan.toml" : std::filesystem::path(o.scan_config);
   if (o.scan_config.empty()) io::write_file_atomically(scan_file, default_scan_config);
   scan::ScanConfig config = scan::load_scan_config(scan_file);
   config.output = out / "scan";
@@ -189,7 +191,8 @@ void add_study_command(CLI::App& app, int& exit_code) {
       fs::remove_all(run_folder);
       const auto summary = loading::run_simulation(config, sample, run_folder, command);
       fmt::print(
-          "      {} ({}) after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s, energy balance {:.2g}\n",
+          "      {} ({}) after {} steps at strain {:.4g} %, {} bonds broken, {:.3g} s, energy balance "
+          "{:.2g}\n",
           summary.status, summary.stop_reason, summary.steps, summary.strain, summary.broken_bonds,
           summary.wall_seconds, summary.max_relative_energy_error);
 

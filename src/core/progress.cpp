@@ -1,9 +1,9 @@
 #include "core/progress.hpp"
 
-#include <cstdlib>
+#include <fmt/format.h>
 #include <unistd.h>
 
-#include <fmt/format.h>
+#include <cstdlib>
 
 namespace rupture {
 

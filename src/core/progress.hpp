@@ -49,8 +49,8 @@ class Progress {
   Mode mode_;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> log_{nullptr, &std::fclose};
   std::chrono::milliseconds line_interval_;
-  bool active_;                // anything to report to
-  bool drawn_ = false;         // a terminal line is on screen
+  bool active_;                         // anything to report to
+  bool drawn_ = false;                  // a terminal line is on screen
   bool redraw_ = false, line_ = false;  // what the pending emit() writes
   std::chrono::steady_clock::time_point start_, last_draw_, last_line_;
 };

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdint>
-
 #include <pcg_random.hpp>
 
 namespace rupture {
@@ -17,7 +16,7 @@ enum class RandomStream : std::uint64_t {
   fbm_thresholds = 1,
   sample_radii = 2,
   sample_packing = 3,
-  analysis_noise = 4,   // synthetic noise in tests and calibration studies
+  analysis_noise = 4,  // synthetic noise in tests and calibration studies
   dem_bond_order = 5,
   analysis_bootstrap = 6,  // noise replicates of the analysis's parametric bootstrap
 };
@@ -62,7 +61,8 @@ class Rng {
   std::uint64_t below(std::uint64_t n) {
     const std::uint64_t limit = UINT64_MAX - UINT64_MAX % n;
     std::uint64_t v;
-    do v = engine_(); while (v >= limit);
+    do v = engine_();
+    while (v >= limit);
     return v % n;
   }
 

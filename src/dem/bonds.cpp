@@ -47,7 +47,8 @@ BondStore::BondStore(const Sample& sample, std::span<const std::uint32_t> storag
   for (std::uint32_t a = 0; a < n; ++a) {
     auto& list = bonds_of[a];
     const auto other = [&](std::uint32_t b) { return i[b] == a ? j[b] : i[b]; };
-    std::sort(list.begin(), list.end(), [&](std::uint32_t l, std::uint32_t r) { return other(l) < other(r); });
+    std::sort(list.begin(), list.end(),
+              [&](std::uint32_t l, std::uint32_t r) { return other(l) < other(r); });
     link_count[a] = static_cast<std::uint32_t>(list.size());
     std::uint32_t slot = link_start[a];
     for (const std::uint32_t b : list) set_link(slot++, a, b);

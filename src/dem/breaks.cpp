@@ -19,11 +19,13 @@ void BreakLedger::apply(std::uint64_t step, double half_dt, const ParticleStore&
     flags.clear();
   }
   std::sort(merged_.begin(), merged_.end());
-  for (const std::uint32_t b : merged_) break_one(b, step, half_dt, particles, bonds, neighbours, params, released);
+  for (const std::uint32_t b : merged_)
+    break_one(b, step, half_dt, particles, bonds, neighbours, params, released);
 }
 
-void BreakLedger::break_one(std::uint32_t b, std::uint64_t step, double half_dt, const ParticleStore& particles,
-                            BondStore& bonds, NeighbourList& neighbours, const Params& params, double& released) {
+void BreakLedger::break_one(std::uint32_t b, std::uint64_t step, double half_dt,
+                            const ParticleStore& particles, BondStore& bonds, NeighbourList& neighbours,
+                            const Params& params, double& released) {
   const HotParticles& p = particles.hot;
   const std::uint32_t i = bonds.i[b], j = bonds.j[b];
   const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], dz = p.z[j] - p.z[i];

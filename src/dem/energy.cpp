@@ -8,8 +8,9 @@
 
 namespace rupture::dem {
 
-Energies measure_energies(const ParticleStore& particles, const BondStore& bonds, const NeighbourList& neighbours,
-                          const PlateMotion& top, const Params& params, bool parallel) {
+Energies measure_energies(const ParticleStore& particles, const BondStore& bonds,
+                          const NeighbourList& neighbours, const PlateMotion& top, const Params& params,
+                          bool parallel) {
   const HotParticles& p = particles.hot;
   const ColdParticles& cold = particles.cold;
   const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
@@ -40,7 +41,8 @@ Energies measure_energies(const ParticleStore& particles, const BondStore& bonds
     }
     double glue_energy = 0.0;
     if (p.plate[a] != plate_none)
-      glue_energy = glue.energy(p.x[a] - cold.ax[a], p.y[a] - cold.ay[a] - plate_u[p.plate[a]], p.z[a] - cold.az[a]);
+      glue_energy =
+          glue.energy(p.x[a] - cold.ax[a], p.y[a] - cold.ay[a] - plate_u[p.plate[a]], p.z[a] - cold.az[a]);
     const double kinetic = 0.5 * cold.mass[a] * (p.vx[a] * p.vx[a] + p.vy[a] * p.vy[a] + p.vz[a] * p.vz[a]);
     per[a] = {elastic, kinetic, contact, glue_energy};
     contacts[a] = count;

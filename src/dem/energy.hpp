@@ -24,8 +24,9 @@ struct Energies {
 };
 
 // Per-particle values summed serially in storage order: the same for any thread count.
-Energies measure_energies(const ParticleStore& particles, const BondStore& bonds, const NeighbourList& neighbours,
-                          const PlateMotion& top, const Params& params, bool parallel);
+Energies measure_energies(const ParticleStore& particles, const BondStore& bonds,
+                          const NeighbourList& neighbours, const PlateMotion& top, const Params& params,
+                          bool parallel);
 
 struct EnergyLedger {
   // Force of each plate on the sample along y (N): the glue springs' pull, or in rigid mode what the

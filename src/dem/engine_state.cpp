@@ -55,9 +55,19 @@ void System::restore_state(const EngineState& s, const std::string& source) {
   if (s.sample_of_storage != particles_.sample_of_storage)
     fail("sample_of_storage", "the particle order differs from this sample's (another sample?)");
   const std::pair<const char*, const std::vector<double>*> particle_fields[] = {
-      {"x", &s.x},   {"y", &s.y},   {"z", &s.z},   {"vx", &s.vx}, {"vy", &s.vy},
-      {"vz", &s.vz}, {"fx", &s.fx}, {"fy", &s.fy}, {"fz", &s.fz}, {"xb", &s.xb},
-      {"yb", &s.yb}, {"zb", &s.zb}, {"damped_per_particle", &s.damped_per_particle}};
+      {"x", &s.x},
+      {"y", &s.y},
+      {"z", &s.z},
+      {"vx", &s.vx},
+      {"vy", &s.vy},
+      {"vz", &s.vz},
+      {"fx", &s.fx},
+      {"fy", &s.fy},
+      {"fz", &s.fz},
+      {"xb", &s.xb},
+      {"yb", &s.yb},
+      {"zb", &s.zb},
+      {"damped_per_particle", &s.damped_per_particle}};
   for (const auto& [name, values] : particle_fields) require_size(name, values->size(), n);
   require_size("intact", s.intact.size(), bonds);
   require_size("link_count", s.link_count.size(), n);
@@ -66,7 +76,8 @@ void System::restore_state(const EngineState& s, const std::string& source) {
   require_size("nb_count", s.nb_count.size(), n);
 
   for (std::size_t b = 0; b < bonds; ++b)
-    if (s.intact[b] > 1) fail("intact", "bond " + std::to_string(b) + " has flag " + std::to_string(s.intact[b]));
+    if (s.intact[b] > 1)
+      fail("intact", "bond " + std::to_string(b) + " has flag " + std::to_string(s.intact[b]));
   // Each particle's slice must hold its own bonds (in any order), the intact ones first.
   std::vector<std::uint32_t> mine, theirs;
   for (std::size_t a = 0; a < n; ++a) {
@@ -77,21 +88,24 @@ void System::restore_state(const EngineState& s, const std::string& source) {
     theirs.assign(s.link_bond.begin() + begin, s.link_bond.begin() + end);
     std::sort(mine.begin(), mine.end());
     std::sort(theirs.begin(), theirs.end());
-    if (mine != theirs) fail("link_bond", "particle slot " + std::to_string(a) + " lists bonds it does not have");
+    if (mine != theirs)
+      fail("link_bond", "particle slot " + std::to_string(a) + " lists bonds it does not have");
     for (std::uint32_t l = begin; l < end; ++l)
       if ((l < begin + s.link_count[a]) != (s.intact[s.link_bond[l]] != 0))
         fail("link_count", "particle slot " + std::to_string(a) + " disagrees with the intact flags");
   }
   if (s.nb_start[0] != 0) fail("nb_start", "does not start at 0");
   for (std::size_t a = 0; a < n; ++a) {
-    if (s.nb_start[a + 1] < s.nb_start[a]) fail("nb_start", "decreases at particle slot " + std::to_string(a));
+    if (s.nb_start[a + 1] < s.nb_start[a])
+      fail("nb_start", "decreases at particle slot " + std::to_string(a));
     if (s.nb_count[a] > s.nb_start[a + 1] - s.nb_start[a])
       fail("nb_count", "particle slot " + std::to_string(a) + " overflows its neighbour slice");
   }
   require_size("nb", s.nb.size(), s.nb_start[n]);
   for (std::size_t a = 0; a < n; ++a)
     for (std::uint32_t q = s.nb_start[a]; q < s.nb_start[a] + s.nb_count[a]; ++q)
-      if (s.nb[q] >= n || s.nb[q] == a) fail("nb", "particle slot " + std::to_string(a) + " has an invalid neighbour");
+      if (s.nb[q] >= n || s.nb[q] == a)
+        fail("nb", "particle slot " + std::to_string(a) + " has an invalid neighbour");
 
   step_ = s.step;
   time_ = s.time;

@@ -30,7 +30,7 @@ struct EngineState {
   std::uint64_t step = 0;
   double time = 0.0;  // s
   PlateMotion top;
-  std::array<double, 3> plate_force{};  // N, per Plate
+  std::array<double, 3> plate_force{};                    // N, per Plate
   double plate_work = 0.0, released = 0.0, damped = 0.0;  // mJ
   std::uint64_t neighbour_rebuilds = 0;
   bool forces_stale = false;

@@ -13,7 +13,8 @@ namespace {
 
 template <bool damped>
 void force_pass_impl(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
-                     const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel) {
+                     const NeighbourList& neighbours, BreakLedger& breaks, const Params& params,
+                     bool parallel) {
   HotParticles& p = particles.hot;
   ColdParticles& cold = particles.cold;
   const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
@@ -62,7 +63,8 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
           const std::uint32_t j = link_other[l];
           const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
           const BreakableBond bond{{link_k[l], link_r0[l]}, link_limit[l]};
-          if (j > a && bond.breaks(std::sqrt(dx * dx + dy * dy + dz * dz))) flags.push_back(bonds.link_bond[l]);
+          if (j > a && bond.breaks(std::sqrt(dx * dx + dy * dy + dz * dz)))
+            flags.push_back(bonds.link_bond[l]);
         }
       }
       // Touching pairs only, in the slice's sorted order, so that the sum does not depend on which

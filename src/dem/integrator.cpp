@@ -17,7 +17,8 @@ struct MoveMax {
 inline MoveMax farther(const MoveMax& a, const MoveMax& b) {
   return (a.move2 > b.move2 || (a.move2 == b.move2 && a.index < b.index)) ? a : b;
 }
-#pragma omp declare reduction(farther : MoveMax : omp_out = farther(omp_out, omp_in)) \
+#pragma omp declare reduction(farther:MoveMax                       \
+                              : omp_out = farther(omp_out, omp_in)) \
     initializer(omp_priv = MoveMax{-1.0, 0xffffffffu})
 
 // The two largest squared displacements since the list build (a max: the same for any split).
@@ -37,7 +38,8 @@ inline TopTwo merged(TopTwo a, const TopTwo& b) {
   a.add(b.second);
   return a;
 }
-#pragma omp declare reduction(top_two : TopTwo : omp_out = merged(omp_out, omp_in)) initializer(omp_priv = TopTwo{})
+#pragma omp declare reduction(top_two:TopTwo \
+                              : omp_out = merged(omp_out, omp_in)) initializer(omp_priv = TopTwo{})
 
 template <bool damped>
 DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, const NeighbourList& list,

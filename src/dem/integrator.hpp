@@ -25,7 +25,8 @@ inline void half_kick(double& vx, double& vy, double& vz, double fx, double fy, 
     vx = vx0 * keep + h * fx;
     vy = vy0 * keep + h * fy;
     vz = vz0 * keep + h * fz;
-    damped_energy += damping * half * mass * 0.5 * (vx0 * vx0 + vy0 * vy0 + vz0 * vz0 + vx * vx0 + vy * vy0 + vz * vz0);
+    damped_energy +=
+        damping * half * mass * 0.5 * (vx0 * vx0 + vy0 * vy0 + vz0 * vz0 + vx * vx0 + vy * vy0 + vz * vz0);
   } else {
     vx += h * fx;
     vy += h * fy;
@@ -36,8 +37,8 @@ inline void half_kick(double& vx, double& vy, double& vz, double fx, double fy, 
 struct DriftResult {
   double largest_move = 0.0;  // mm: largest displacement since the last list build
   double second_move = 0.0;   // mm: second largest
-  double move2 = 0.0;       // 1: largest (|dt v| / r)^2 of this step (inf when non-finite)
-  std::uint32_t mover = 0;  // storage index reaching it
+  double move2 = 0.0;         // 1: largest (|dt v| / r)^2 of this step (inf when non-finite)
+  std::uint32_t mover = 0;    // storage index reaching it
 };
 
 // First half-kick and drift to the step's end; glued particles in rigid mode follow their plate.

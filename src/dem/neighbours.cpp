@@ -1,11 +1,11 @@
 #include "dem/neighbours.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <numeric>
-
-#include <omp.h>
 
 namespace rupture::dem {
 
@@ -37,7 +37,8 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
   double size[3];
   for (int d = 0; d < 3; ++d) size[d] = std::max(cell, (hi[d] - lo[d]) / double(dims[d]) * (1.0 + 1e-12));
   const auto coord = [&](double v, int d) {
-    return std::min<std::int64_t>(dims[d] - 1, std::max<std::int64_t>(0, std::int64_t((v - lo[d]) / size[d])));
+    return std::min<std::int64_t>(dims[d] - 1,
+                                  std::max<std::int64_t>(0, std::int64_t((v - lo[d]) / size[d])));
   };
   cell_start_.assign(cells + 1, 0);
   cell_particles_.resize(n);

@@ -14,18 +14,18 @@
 namespace rupture::dem {
 
 struct HotParticles {
-  std::vector<double> x, y, z;     // mm
-  std::vector<double> vx, vy, vz;  // mm/s
-  std::vector<double> fx, fy, fz;  // N: the last force pass's forces (the next first half-kick needs them)
-  std::vector<double> inv_mass;    // 1/t
-  std::vector<double> radius;      // mm
-  std::vector<std::uint8_t> plate; // Plate
+  std::vector<double> x, y, z;      // mm
+  std::vector<double> vx, vy, vz;   // mm/s
+  std::vector<double> fx, fy, fz;   // N: the last force pass's forces (the next first half-kick needs them)
+  std::vector<double> inv_mass;     // 1/t
+  std::vector<double> radius;       // mm
+  std::vector<std::uint8_t> plate;  // Plate
 };
 
 struct ColdParticles {
-  std::vector<double> mass;                  // t
-  std::vector<double> ax, ay, az;            // mm: anchor on the plate = initial position
-  std::vector<double> damped;                // mJ removed from each particle by viscous damping
+  std::vector<double> mass;        // t
+  std::vector<double> ax, ay, az;  // mm: anchor on the plate = initial position
+  std::vector<double> damped;      // mJ removed from each particle by viscous damping
 };
 
 struct ParticleStore {

@@ -19,7 +19,7 @@ double bond_stiffness(const Params& params, double rest_length);
 // How far (mm) a bond of `rest_length` may stretch before it breaks: b_d, or b * r0 (relative rule).
 double break_limit(const Params& params, double rest_length);
 
-double mean_rest_length(const Sample& sample);  // mm; 0 without bonds
+double mean_rest_length(const Sample& sample);                          // mm; 0 without bonds
 double mean_particle_mass(const Sample& sample, const Params& params);  // t
 
 // The nominal break strain (1): b_d / mean r0 (absolute rule) or b (relative rule). A scale, not a

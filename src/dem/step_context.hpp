@@ -16,7 +16,12 @@ struct StepContext {
   std::array<double, 3> plate_u{}, plate_v{}, plate_a{};  // mm, mm/s, mm/s^2 per Plate
 
   static StepContext at(double dt, double half_dt, const PlateMotion& top) {
-    return {dt, half_dt, top, {0.0, 0.0, top.displacement}, {0.0, 0.0, top.velocity}, {0.0, 0.0, top.acceleration}};
+    return {dt,
+            half_dt,
+            top,
+            {0.0, 0.0, top.displacement},
+            {0.0, 0.0, top.velocity},
+            {0.0, 0.0, top.acceleration}};
   }
 };
 

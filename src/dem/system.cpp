@@ -37,9 +37,12 @@ const Params& validated(const Sample& sample, const Params& p) {
   const std::size_t n = sample.size();
   if (sample.radius.size() != n || sample.group.size() != n || sample.id.size() != n)
     throw InputError("sample", "particle arrays differ in length", "regenerate or re-export the sample");
-  if (!(p.bond_stiffness > 0.0)) throw InputError("bonds.stiffness", "must be > 0 (N/mm)", "give a positive k_n");
-  if (!(p.break_distance > 0.0)) throw InputError("bonds.break_distance", "must be > 0", "give a positive b_d");
-  if (!(p.density > 0.0)) throw InputError("sample.density", "must be > 0 (g/mm^3)", "give a positive density");
+  if (!(p.bond_stiffness > 0.0))
+    throw InputError("bonds.stiffness", "must be > 0 (N/mm)", "give a positive k_n");
+  if (!(p.break_distance > 0.0))
+    throw InputError("bonds.break_distance", "must be > 0", "give a positive b_d");
+  if (!(p.density > 0.0))
+    throw InputError("sample.density", "must be > 0 (g/mm^3)", "give a positive density");
   return p;
 }
 
@@ -66,7 +69,8 @@ StabilityBound stability_bound(const ParticleStore& particles, const BondStore& 
       bound.stiffest_mass = mass[a];
     }
   }
-  bound.critical_dt = lambda_max > 0.0 ? 2.0 / std::sqrt(lambda_max) : std::numeric_limits<double>::infinity();
+  bound.critical_dt =
+      lambda_max > 0.0 ? 2.0 / std::sqrt(lambda_max) : std::numeric_limits<double>::infinity();
   return bound;
 }
 
@@ -85,16 +89,17 @@ System::System(const Sample& sample, const Params& params)
 }
 
 void System::rebuild_neighbours() {
-  timed(times_.neighbours, [&] {
-    neighbours_.build(particles_.hot, bonds_, particles_.max_radius, parallel_);
-  });
+  timed(times_.neighbours,
+        [&] { neighbours_.build(particles_.hot, bonds_, particles_.max_radius, parallel_); });
 }
 
 void System::refresh_forces() {
   const StepContext here = StepContext::at(0.0, 0.0, top_);
-  timed(times_.forces, [&] { force_pass(here, particles_, bonds_, neighbours_, breaks_, params_, parallel_); });
+  timed(times_.forces,
+        [&] { force_pass(here, particles_, bonds_, neighbours_, breaks_, params_, parallel_); });
   timed(times_.plates, [&] { ledger_.update_plate_forces(here, particles_, params_); });
-  timed(times_.breaks, [&] { breaks_.apply(step_, 0.0, particles_, bonds_, neighbours_, params_, ledger_.released); });
+  timed(times_.breaks,
+        [&] { breaks_.apply(step_, 0.0, particles_, bonds_, neighbours_, params_, ledger_.released); });
 }
 
 void System::step(double dt, const PlateMotion& top) {
@@ -115,10 +120,12 @@ void System::step(double dt, const PlateMotion& top) {
     neighbours_.adapt_skin(step_, params_.skin, widest_skin_);
     rebuild_neighbours();
   }
-  timed(times_.forces, [&] { force_pass(step, particles_, bonds_, neighbours_, breaks_, params_, parallel_); });
+  timed(times_.forces,
+        [&] { force_pass(step, particles_, bonds_, neighbours_, breaks_, params_, parallel_); });
   timed(times_.plates, [&] { ledger_.update_plate_forces(step, particles_, params_); });
-  timed(times_.breaks,
-        [&] { breaks_.apply(step_, step.half_dt, particles_, bonds_, neighbours_, params_, ledger_.released); });
+  timed(times_.breaks, [&] {
+    breaks_.apply(step_, step.half_dt, particles_, bonds_, neighbours_, params_, ledger_.released);
+  });
   ledger_.add_plate_work(force_before, top_.displacement - u_before);
   if (params_.damping > 0.0) ledger_.sum_damping(particles_);
 }
@@ -140,9 +147,7 @@ std::size_t System::state_bytes() const {
          bonds_.intact.size() + (bonds_.link_bond.size() + neighbours_.list.size()) * sizeof(std::uint32_t);
 }
 
-std::size_t System::memory_bytes() const {
-  return particles_.bytes() + bonds_.bytes() + neighbours_.bytes();
-}
+std::size_t System::memory_bytes() const { return particles_.bytes() + bonds_.bytes() + neighbours_.bytes(); }
 
 Vec3 System::position(std::size_t sample_index) const {
   const auto a = particles_.storage_of_sample[sample_index];

@@ -70,7 +70,9 @@ Maximum global_maximum(const std::vector<double>& nodes, double lo, G&& g, DG&& 
 }  // namespace
 
 nlohmann::json to_json(const Characteristics& c) {
-  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  const auto optional = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  };
   return {{"x_c", c.x_c},
           {"F_c", c.F_c},
           {"x_m", optional(c.x_m)},

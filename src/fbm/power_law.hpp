@@ -18,9 +18,9 @@ struct Maxima {
 inline Maxima maxima(double alpha) {
   const double e = 1.0 / (1.0 + alpha);
   Maxima m{};
-  m.x_c = std::pow(1.0 / (2.0 + alpha), e);                          // 1 - (2+α) x^(1+α) = 0
-  m.x_m = std::pow(2.0 / (3.0 + alpha), e);                          // 2 - (3+α) x^(1+α) = 0
-  m.x_p = std::pow(2.0 / ((2.0 + alpha) * (3.0 + alpha)), e);        // 2 - (2+α)(3+α) x^(1+α) = 0
+  m.x_c = std::pow(1.0 / (2.0 + alpha), e);                    // 1 - (2+α) x^(1+α) = 0
+  m.x_m = std::pow(2.0 / (3.0 + alpha), e);                    // 2 - (3+α) x^(1+α) = 0
+  m.x_p = std::pow(2.0 / ((2.0 + alpha) * (3.0 + alpha)), e);  // 2 - (2+α)(3+α) x^(1+α) = 0
   m.F_c = m.x_c * (1.0 + alpha) / (2.0 + alpha);
   m.E_max = 0.5 * m.x_m * m.x_m * (1.0 + alpha) / (3.0 + alpha);
   m.Erate_max = m.x_p * (1.0 + alpha) / (2.0 + alpha);
@@ -32,9 +32,13 @@ inline Maxima maxima(double alpha) {
 }
 
 // x_c / x_p (eq. 16); δ_x / x_p = ratio - 1 (eq. 18).
-inline double critical_to_precursor_ratio(double alpha) { return std::pow((3.0 + alpha) / 2.0, 1.0 / (1.0 + alpha)); }
+inline double critical_to_precursor_ratio(double alpha) {
+  return std::pow((3.0 + alpha) / 2.0, 1.0 / (1.0 + alpha));
+}
 // x_m / x_p (eq. 16).
-inline double energy_max_to_precursor_ratio(double alpha) { return std::pow(2.0 + alpha, 1.0 / (1.0 + alpha)); }
+inline double energy_max_to_precursor_ratio(double alpha) {
+  return std::pow(2.0 + alpha, 1.0 / (1.0 + alpha));
+}
 // Γ (eq. 19).
 inline double gamma(double alpha) {
   const double c = critical_to_precursor_ratio(alpha);

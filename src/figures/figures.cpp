@@ -227,7 +227,8 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     // The posterior grid spans the whole prior; show the 95 % interval with its own width on each side.
     const double low = delta.at("ci95").at(0).get<double>(), high = delta.at("ci95").at(1).get<double>();
     if (high > low) panel.xrange = fmt::format("[{}:{}]", low - (high - low), high + (high - low));
-    panel.series = {{.block = figure.blocks.size() - 1, .title = sampled ? "bootstrap replicates of δ_x" : "posterior p(δ_x | F, ℰ)"}};
+    panel.series = {{.block = figure.blocks.size() - 1,
+                     .title = sampled ? "bootstrap replicates of δ_x" : "posterior p(δ_x | F, ℰ)"}};
     panel.markers = {{delta.at("map").get<double>(), sampled ? "δ_x" : "MAP"}};
     figure.panels.push_back(std::move(panel));
     figure.height = 1100;

@@ -26,7 +26,8 @@ struct ClassStyle {
 };
 // Classes of accepted points; ductile-like points are rejected (x_c cannot be identified) and drawn
 // with the other rejected points.
-constexpr ClassStyle class_styles[] = {{"brittle", "#1f77b4"}, {"hyper-elastic", "#d62728"}, {"semi-ductile", "#2ca02c"}};
+constexpr ClassStyle class_styles[] = {
+    {"brittle", "#1f77b4"}, {"hyper-elastic", "#d62728"}, {"semi-ductile", "#2ca02c"}};
 
 using Point = scan::PointOutcome;
 
@@ -75,18 +76,23 @@ std::optional<Figure> mechanism_map(const std::vector<Point>& points) {
     return c;
   };
   for (const auto& style : class_styles) {
-    add_group(figure, panel, std::string("class ") + style.name, header, columns_where([&](const Point& p) {
-                return p.analysed() && p.mechanism == style.name;
-              }),
+    add_group(figure, panel, std::string("class ") + style.name, header,
+              columns_where([&](const Point& p) { return p.analysed() && p.mechanism == style.name; }),
               {.title = style.name, .style = Style::points, .color = style.color, .point_size = 2.0});
   }
   add_group(figure, panel, "rejected as ductile-like (x_c not identifiable)", header,
             columns_where([&](const Point& p) { return p.rejected() && p.ductile_like(); }),
-            {.title = "rejected: ductile-like", .style = Style::points, .color = "#ff7f0e", .point_type = 2,
+            {.title = "rejected: ductile-like",
+             .style = Style::points,
+             .color = "#ff7f0e",
+             .point_type = 2,
              .point_size = 2.0});
   add_group(figure, panel, "rejected for another reason (see results.csv why)", header,
             columns_where([&](const Point& p) { return p.rejected() && !p.ductile_like(); }),
-            {.title = "rejected: peaks not resolved", .style = Style::points, .color = "#555555", .point_type = 2,
+            {.title = "rejected: peaks not resolved",
+             .style = Style::points,
+             .color = "#555555",
+             .point_type = 2,
              .point_size = 2.0});
   add_group(figure, panel, "points not analysed (not separated, unstable, failed or unfinished)", header,
             columns_where([](const Point& p) { return p.status != scan::status::ok; }),

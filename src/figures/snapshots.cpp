@@ -234,8 +234,9 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
       "Intact bonds at {} strains, coloured by their extension (r - r0)/r0 in % on one scale for all panels "
       "(ends of the scale: the {:.1f} % quantile of |extension|){}.",
       chosen.size(), 100.0 * colour_quantile,
-      breaks != nullptr ? "; black dots: the bonds broken so far, where they broke (from breaks.csv), which trace the crack"
-                        : "; broken bonds are gone");
+      breaks != nullptr
+          ? "; black dots: the bonds broken so far, where they broke (from breaks.csv), which trace the crack"
+          : "; broken bonds are gone");
   return figure;
 }
 

@@ -186,7 +186,8 @@ const std::vector<Key>& schema() {
     k.push_back(number_key("contacts", "stiffness_factor", "1", "contact stiffness as a multiple of k_n",
                            &RunConfig::contact_stiffness_factor, Range{0, 1e6}));
     k.push_back(number_key("contacts", "skin", "mm",
-                           "Verlet-list skin to start from (widens up to 4x when lists last under 50 steps; results do not depend on it)",
+                           "Verlet-list skin to start from (widens up to 4x when lists last under 50 steps; "
+                           "results do not depend on it)",
                            &RunConfig::skin, Range{1e-6, 1e3}));
     k.push_back(
         choice_key("glue", "mode",

@@ -198,10 +198,9 @@ constexpr double max_step_move = 0.5;  // 1, of the particle's radius
 
 // What `rupture run` leaves in its folder, and what analyze, plot and report add about that run:
 // the files --overwrite removes (and nothing else, so a user's own files beside them survive).
-const std::vector<std::string> run_outputs = {"run.json",      "curves.csv",    "breaks.csv",
-                                              "snapshots.pvd", "analysis.json", "report.html",
-                                              "checkpoints",   "snapshots",     "figures",
-                                              "run.log"};
+const std::vector<std::string> run_outputs = {"run.json",      "curves.csv",  "breaks.csv",  "snapshots.pvd",
+                                              "analysis.json", "report.html", "checkpoints", "snapshots",
+                                              "figures",       "run.log"};
 
 // A folder's run.json, if rupture run wrote one there (null otherwise, also when unreadable).
 nlohmann::json read_run_record(const std::filesystem::path& folder) {
@@ -396,7 +395,7 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
   summary.max_energy_error = loop.max_energy_error;
   summary.max_relative_energy_error = loop.max_relative_energy_error;
   const auto strain_now = [&] { return 100.0 * system.top_plate().displacement / l0; };
-  std::string instability;  // what gave the instability away, naming the particle ("" while stable)
+  std::string instability;      // what gave the instability away, naming the particle ("" while stable)
   bool stop_requested = false;  // options.on_row said stop
   const auto record = [&] {
     const dem::Energies e = system.energies();
@@ -427,9 +426,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
               warning->max_row_spacing);
       }
     }
-    if (options.on_row &&
-        !options.on_row({system.steps_done(), strain_now(), system.force_top(),
-                         std::size_t(system.bond_count() - system.intact_bonds())}))
+    if (options.on_row && !options.on_row({system.steps_done(), strain_now(), system.force_top(),
+                                           std::size_t(system.bond_count() - system.intact_bonds())}))
       stop_requested = true;
     loop.max_work = std::max(loop.max_work, std::abs(w));
     const double error = std::abs(w - total);
@@ -447,7 +445,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
       instability = "energies are no longer finite numbers";
     else if (error > 0.5 * std::max({loop.max_work, total, initial_energy}) && error > floor)
       instability = fmt::format(
-          "the energy balance broke down: the plates did {:.4g} mJ of work but the sample gained and released "
+          "the energy balance broke down: the plates did {:.4g} mJ of work but the sample gained and "
+          "released "
           "{:.4g} mJ (kinetic {:.4g} mJ)",
           w, total, e.kinetic);
     if (instability.empty()) return true;
@@ -545,7 +544,8 @@ RunSummary execute(const RunConfig& config, const Sample& sample, const std::fil
         loop.separated = !loop.separation_rule.empty();
         loop.separation_strain = strain;
       }
-      if (config.stop_at_separation && loop.separated && strain >= loop.separation_strain + config.extra_strain) {
+      if (config.stop_at_separation && loop.separated &&
+          strain >= loop.separation_strain + config.extra_strain) {
         summary.stop_reason = "separated";
         break;
       }

@@ -3,13 +3,12 @@
 // copy), results as the same JSON documents the CLI writes (as dicts). The Python package around it
 // (src/python/rupture/) adds DataFrames, config dicts and the readers of run and scan folders.
 // Errors: InputError -> rupture.InputError (a ValueError), RunError -> rupture.RunError (a RuntimeError).
+#include <fmt/format.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
-
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -90,7 +89,8 @@ py::dict curve_columns(const std::vector<fbm::CurvePoint>& curve) {
 }
 
 // The ELS theory evaluated at the strains a user chose (continuous distributions only).
-py::dict theory_at(const std::string& spec, const py::array_t<double, py::array::c_style | py::array::forcecast>& x) {
+py::dict theory_at(const std::string& spec,
+                   const py::array_t<double, py::array::c_style | py::array::forcecast>& x) {
   const auto dist = distribution(spec);
   const auto* continuous = dynamic_cast<const fbm::ContinuousDistribution*>(dist.get());
   if (continuous == nullptr)
@@ -101,8 +101,8 @@ py::dict theory_at(const std::string& spec, const py::array_t<double, py::array:
   const auto in = x.unchecked<1>();
   for (py::ssize_t i = 0; i < in.shape(0); ++i) {
     const double s = in(i);
-    curve.push_back({s, theory.force(s), theory.elastic_energy(s), theory.damage_energy(s), theory.energy_rate(s),
-                     continuous->cdf(s)});
+    curve.push_back({s, theory.force(s), theory.elastic_energy(s), theory.damage_energy(s),
+                     theory.energy_rate(s), continuous->cdf(s)});
   }
   return curve_columns(curve);
 }
@@ -153,7 +153,8 @@ py::array positions_view(const SamplePtr& s) {
 
 template <class T>
 py::array vector_view(std::vector<T>& values, const SamplePtr& owner) {
-  return py::array_t<T>({py::ssize_t(values.size())}, {py::ssize_t(sizeof(T))}, values.data(), py::cast(owner));
+  return py::array_t<T>({py::ssize_t(values.size())}, {py::ssize_t(sizeof(T))}, values.data(),
+                        py::cast(owner));
 }
 
 py::array groups_view(const SamplePtr& s) {
@@ -175,13 +176,15 @@ py::array rest_lengths_view(const SamplePtr& s) {
 
 // A sample from a user's arrays: bonds are optional (then made from the gaps, as the generator does),
 // glued layers from `groups` or from the particles' heights.
-SamplePtr sample_from_arrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& positions,
-                             const py::array_t<double, py::array::c_style | py::array::forcecast>& radii,
-                             const std::optional<py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>>& groups,
-                             const std::optional<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>& bonds,
-                             double bond_tolerance, double density) {
+SamplePtr sample_from_arrays(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& positions,
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& radii,
+    const std::optional<py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>>& groups,
+    const std::optional<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>& bonds,
+    double bond_tolerance, double density) {
   if (positions.ndim() != 2 || positions.shape(1) != 3)
-    throw InputError("positions", "must be an (n, 3) array of x, y, z in mm", "pass positions.reshape(-1, 3)");
+    throw InputError("positions", "must be an (n, 3) array of x, y, z in mm",
+                     "pass positions.reshape(-1, 3)");
   const auto n = positions.shape(0);
   if (radii.ndim() != 1 || radii.shape(0) != n)
     throw InputError("radii", "must hold one radius (mm) per particle", "pass an array of length n");
@@ -210,10 +213,12 @@ SamplePtr sample_from_arrays(const py::array_t<double, py::array::c_style | py::
     for (py::ssize_t k = 0; k < b.shape(0); ++k) {
       auto i = b(k, 0), j = b(k, 1);
       if (i < 0 || j < 0 || i >= n || j >= n || i == j)
-        throw InputError(fmt::format("bonds row {}", k), fmt::format("({}, {}) is not a pair of particles 0..{}", i, j, n - 1),
+        throw InputError(fmt::format("bonds row {}", k),
+                         fmt::format("({}, {}) is not a pair of particles 0..{}", i, j, n - 1),
                          "give two different particle indices per bond");
       if (i > j) std::swap(i, j);
-      sample->bonds.push_back({std::uint32_t(i), std::uint32_t(j), norm(sample->position[j] - sample->position[i])});
+      sample->bonds.push_back(
+          {std::uint32_t(i), std::uint32_t(j), norm(sample->position[j] - sample->position[i])});
     }
     std::sort(sample->bonds.begin(), sample->bonds.end(),
               [](const Bond& a, const Bond& c) { return a.i != c.i ? a.i < c.i : a.j < c.j; });
@@ -222,16 +227,19 @@ SamplePtr sample_from_arrays(const py::array_t<double, py::array::c_style | py::
   }
   if (groups) {
     if (groups->ndim() != 1 || groups->shape(0) != n)
-      throw InputError("groups", "must hold one group per particle (0 free, 1 bottom, 2 top)", "pass an array of length n");
+      throw InputError("groups", "must hold one group per particle (0 free, 1 bottom, 2 top)",
+                       "pass an array of length n");
     const auto g = groups->unchecked<1>();
     for (py::ssize_t k = 0; k < n; ++k) {
-      if (g(k) > 2) throw InputError(fmt::format("groups[{}]", k), "is not 0, 1 or 2", "0 free, 1 bottom, 2 top");
+      if (g(k) > 2)
+        throw InputError(fmt::format("groups[{}]", k), "is not 0, 1 or 2", "0 free, 1 bottom, 2 top");
       sample->group[std::size_t(k)] = ParticleGroup(g(k));
     }
   } else {
     assign_glued_layers(*sample);
   }
-  sample->provenance.push_back(fmt::format("rupture {} python: sample_from_arrays, {} particles", version_string, n));
+  sample->provenance.push_back(
+      fmt::format("rupture {} python: sample_from_arrays, {} particles", version_string, n));
   return sample;
 }
 
@@ -274,7 +282,8 @@ py::dict summary_dict(const loading::RunSummary& summary, const std::filesystem:
   out["wall_s"] = summary.wall_seconds;
   out["max_relative_energy_error"] = summary.max_relative_energy_error;
   out["folder"] = folder;
-  out["checkpoint"] = summary.checkpoint.empty() ? py::object(py::none()) : py::str(summary.checkpoint.string());
+  out["checkpoint"] =
+      summary.checkpoint.empty() ? py::object(py::none()) : py::str(summary.checkpoint.string());
   return out;
 }
 
@@ -284,8 +293,9 @@ py::dict summary_dict(const loading::RunSummary& summary, const std::filesystem:
 py::dict run(const std::filesystem::path& config_file, const std::string& toml_text,
              const std::vector<std::string>& overrides, const std::string& command, bool overwrite,
              const std::optional<py::function>& progress) {
-  const loading::RunConfig config = config_file.empty() ? loading::parse_config(toml_text, "<dict>", overrides)
-                                                        : loading::load_config(config_file, overrides);
+  const loading::RunConfig config = config_file.empty()
+                                        ? loading::parse_config(toml_text, "<dict>", overrides)
+                                        : loading::load_config(config_file, overrides);
   std::optional<py::error_already_set> raised;
   loading::RunOptions options = python_run_options(progress, raised);
   options.existing = overwrite ? loading::Existing::overwrite : loading::Existing::refuse;
@@ -319,7 +329,8 @@ analysis::AnalysisOptions analysis_options(const std::string& delay_method, std:
                                            std::uint64_t seed) {
   analysis::AnalysisOptions options;
   if (delay_method != "fitted-maxima" && delay_method != "shift-l1")
-    throw InputError("delay_method", "'" + delay_method + "' is not a method", "use \"fitted-maxima\" or \"shift-l1\"");
+    throw InputError("delay_method", "'" + delay_method + "' is not a method",
+                     "use \"fitted-maxima\" or \"shift-l1\"");
   options.delay_method =
       delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
   if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
@@ -329,11 +340,12 @@ analysis::AnalysisOptions analysis_options(const std::string& delay_method, std:
 
 py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, std::vector<double> energy,
                         const std::string& strain_unit, const std::string& force_unit,
-                        const std::string& energy_unit, const std::string& delay_method, std::size_t replicates,
-                        std::uint64_t seed) {
+                        const std::string& energy_unit, const std::string& delay_method,
+                        std::size_t replicates, std::uint64_t seed) {
   if (strain.size() != force.size() || strain.size() != energy.size())
-    throw InputError("analyze", fmt::format("strain, force and energy have {}, {} and {} values", strain.size(),
-                                            force.size(), energy.size()),
+    throw InputError("analyze",
+                     fmt::format("strain, force and energy have {}, {} and {} values", strain.size(),
+                                 force.size(), energy.size()),
                      "pass three arrays of one length");
   analysis::Curve curve;
   curve.source = "<arrays>";
@@ -356,8 +368,8 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   return to_python(document);
 }
 
-py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method, std::size_t replicates,
-                      std::uint64_t seed) {
+py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method,
+                      std::size_t replicates, std::uint64_t seed) {
   analysis::CurveFileInputs inputs;
   inputs.curves = curves;
   inputs.options = analysis_options(delay_method, replicates, seed);
@@ -388,42 +400,66 @@ PYBIND11_MODULE(_rupture, m) {
     }
   });
 
-  m.def("fbm_theory", [](const std::string& spec) { return to_python(fbm::to_json(fbm::theory_characteristics(*distribution(spec)))); },
-        py::arg("dist"));
-  m.def("fbm_curve", [](const std::string& spec, std::size_t points) { return curve_columns(fbm::theory_curve(*distribution(spec), points)); },
-        py::arg("dist"), py::arg("points"));
+  m.def(
+      "fbm_theory",
+      [](const std::string& spec) {
+        return to_python(fbm::to_json(fbm::theory_characteristics(*distribution(spec))));
+      },
+      py::arg("dist"));
+  m.def(
+      "fbm_curve",
+      [](const std::string& spec, std::size_t points) {
+        return curve_columns(fbm::theory_curve(*distribution(spec), points));
+      },
+      py::arg("dist"), py::arg("points"));
   m.def("fbm_theory_at", &theory_at, py::arg("dist"), py::arg("strain"));
   m.def("fbm_simulate", &simulate, py::arg("dist"), py::arg("fibers"), py::arg("seed"), py::arg("control"),
         py::arg("sharing"), py::arg("points"));
 
   py::class_<Sample, SamplePtr>(m, "Sample")
       .def_property_readonly("positions", &positions_view, "(n, 3) float64 view, mm")
-      .def_property_readonly("radii", [](const SamplePtr& s) { return vector_view(s->radius, s); }, "(n,) float64 view, mm")
-      .def_property_readonly("ids", [](const SamplePtr& s) { return vector_view(s->id, s); }, "(n,) int64 view")
+      .def_property_readonly(
+          "radii", [](const SamplePtr& s) { return vector_view(s->radius, s); }, "(n,) float64 view, mm")
+      .def_property_readonly(
+          "ids", [](const SamplePtr& s) { return vector_view(s->id, s); }, "(n,) int64 view")
       .def_property_readonly("groups", &groups_view, "(n,) uint8 view: 0 free, 1 bottom plate, 2 top plate")
       .def_property_readonly("bonds", &bond_pairs_view, "(m, 2) uint32 view of particle indices i < j")
       .def_property_readonly("rest_lengths", &rest_lengths_view, "(m,) float64 view, mm")
-      .def_property_readonly("box", [](const SamplePtr& s) {
-        return py::make_tuple(py::make_tuple(s->box.lower.x, s->box.lower.y, s->box.lower.z),
-                              py::make_tuple(s->box.upper.x, s->box.upper.y, s->box.upper.z));
-      }, "((x, y, z) lower, (x, y, z) upper), mm")
-      .def_property("density", [](const SamplePtr& s) { return s->density; }, [](const SamplePtr& s, double d) {
-        if (!(d > 0.0)) throw InputError("density", "must be > 0", "give g/mm^3, e.g. 2.5e-4");
-        s->density = d;
-      }, "g/mm^3")
+      .def_property_readonly(
+          "box",
+          [](const SamplePtr& s) {
+            return py::make_tuple(py::make_tuple(s->box.lower.x, s->box.lower.y, s->box.lower.z),
+                                  py::make_tuple(s->box.upper.x, s->box.upper.y, s->box.upper.z));
+          },
+          "((x, y, z) lower, (x, y, z) upper), mm")
+      .def_property(
+          "density", [](const SamplePtr& s) { return s->density; },
+          [](const SamplePtr& s, double d) {
+            if (!(d > 0.0)) throw InputError("density", "must be > 0", "give g/mm^3, e.g. 2.5e-4");
+            s->density = d;
+          },
+          "g/mm^3")
       .def_property_readonly("provenance", [](const SamplePtr& s) { return s->provenance; })
       .def("__len__", [](const SamplePtr& s) { return s->size(); })
-      .def("stats", [](const SamplePtr& s) { return to_python(to_json(compute_stats(*s))); },
-           "particles, bonds, solid fraction, coordination, radii, glued layers (as `rupture sample info --json`)");
+      .def(
+          "stats", [](const SamplePtr& s) { return to_python(to_json(compute_stats(*s))); },
+          "particles, bonds, solid fraction, coordination, radii, glued layers (as `rupture sample info "
+          "--json`)");
 
-  m.def("sample_generate", [](const std::string& preset, std::uint64_t seed) {
-    py::gil_scoped_release release;
-    return std::make_shared<Sample>(make_preset(preset, seed));
-  }, py::arg("preset"), py::arg("seed"));
-  m.def("sample_load", [](const std::filesystem::path& path) { return std::make_shared<Sample>(load_sample(path)); },
-        py::arg("path"));
-  m.def("sample_save", [](const SamplePtr& s, const std::filesystem::path& path) { save_sample(*s, path); },
-        py::arg("sample"), py::arg("path"));
+  m.def(
+      "sample_generate",
+      [](const std::string& preset, std::uint64_t seed) {
+        py::gil_scoped_release release;
+        return std::make_shared<Sample>(make_preset(preset, seed));
+      },
+      py::arg("preset"), py::arg("seed"));
+  m.def(
+      "sample_load",
+      [](const std::filesystem::path& path) { return std::make_shared<Sample>(load_sample(path)); },
+      py::arg("path"));
+  m.def(
+      "sample_save", [](const SamplePtr& s, const std::filesystem::path& path) { save_sample(*s, path); },
+      py::arg("sample"), py::arg("path"));
   m.def("sample_from_arrays", &sample_from_arrays, py::arg("positions"), py::arg("radii"), py::arg("groups"),
         py::arg("bonds"), py::arg("bond_tolerance"), py::arg("density"));
 

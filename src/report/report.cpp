@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "analysis/analysis.hpp"
@@ -15,8 +15,8 @@
 #include "io/atomic_file.hpp"
 #include "io/file_lock.hpp"
 #include "io/markup.hpp"
-#include "rupture/version.hpp"
 #include "loading/config.hpp"
+#include "rupture/version.hpp"
 #include "scan/claims.hpp"
 #include "scan/results.hpp"
 
@@ -103,7 +103,8 @@ void flatten(const json& value, const std::string& prefix, std::vector<FlatEntry
   }
   std::string text = value.is_string() ? value.get<std::string>() : value.dump();
   if (value.is_number_float()) text = fmt::format("{:.6g}", value.get<double>());
-  if (value.is_array() && std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); })) {
+  if (value.is_array() &&
+      std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); })) {
     text.clear();
     for (const auto& v : value) text += (text.empty() ? "" : ", ") + number_text(v.get<double>());
     text = "[" + text + "]";
@@ -149,7 +150,8 @@ std::string figures_section(const std::vector<figures::Drawn>& drawn, const fs::
   for (const auto& figure : drawn) {
     const fs::path png = figure.png();
     if (png.empty()) continue;
-    const std::string stem = (png.parent_path().lexically_relative(report_folder) / figure.name).generic_string();
+    const std::string stem =
+        (png.parent_path().lexically_relative(report_folder) / figure.name).generic_string();
     html += fmt::format(
         "<figure><img alt=\"{0}\" src=\"data:image/png;base64,{1}\">\n<figcaption><strong>{0}</strong>: {2} "
         "(data and gnuplot script: <code>{3}.dat</code>, <code>{3}.gp</code>)</figcaption></figure>\n",
@@ -191,7 +193,8 @@ std::string provenance(const fs::path& folder, const std::string& command) {
 // The class, or why there is none: a rejected curve carries no class.
 std::string mechanism_text(const json& mechanism) {
   if (mechanism["class"].is_string()) return io::escape_markup(mechanism["class"].get<std::string>());
-  return "none (rejected; its features say " + io::escape_markup(mechanism.value("features_say", std::string("?"))) + ")";
+  return "none (rejected; its features say " +
+         io::escape_markup(mechanism.value("features_say", std::string("?"))) + ")";
 }
 
 std::string run_summary(const json& analysis) {
@@ -223,7 +226,8 @@ std::string run_summary(const json& analysis) {
   else
     text += " Analysis rejected: " +
             io::escape_markup(analysis.value("rejection", std::string("no reason given"))) + ".";
-  if (analysis["mechanism"].is_object()) text += " Breaking mechanism: <strong>" + mechanism_text(analysis["mechanism"]) + "</strong>.";
+  if (analysis["mechanism"].is_object())
+    text += " Breaking mechanism: <strong>" + mechanism_text(analysis["mechanism"]) + "</strong>.";
   return "<p class=\"summary\">" + text + "</p>\n";
 }
 
@@ -271,15 +275,18 @@ std::string analysis_section(const json& analysis) {
     const auto flag = [](const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "–"; };
     html += "<p>Fiber-bundle comparison (power law p(x) = (1+α) x<sup>α</sup>):</p>\n";
     // analysis.json writes α as a plain number (null when δ_x/x_p implies none).
-    const auto number_or_dash = [](const json& v) { return v.is_number() ? number_text(v.get<double>()) : "–"; };
+    const auto number_or_dash = [](const json& v) {
+      return v.is_number() ? number_text(v.get<double>()) : "–";
+    };
     const auto& range = alpha["ci68"];
     const std::string interval =
         range.is_array() && range.size() == 2 && (range[0].is_number() || range[1].is_number())
             ? "[" + number_or_dash(range[0]) + ", " + number_or_dash(range[1]) + "]"
             : "–";
-    html += table({"α from δ_x/x_p (eq. 18)", "α from δ_x's 68 % interval", "Γ within the FBM band 0 ≤ α ≤ 5",
-                   "A_r within the FBM band"},
-                  {{number_or_dash(value), interval, flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
+    html +=
+        table({"α from δ_x/x_p (eq. 18)", "α from δ_x's 68 % interval", "Γ within the FBM band 0 ≤ α ≤ 5",
+               "A_r within the FBM band"},
+              {{number_or_dash(value), interval, flag(alpha["Gamma_in_band"]), flag(alpha["A_r_in_band"])}});
   }
   if (const auto& mechanism = analysis["mechanism"]; mechanism.is_object()) {
     html += "<p>Breaking mechanism: <strong>" + mechanism_text(mechanism) + "</strong> — " +
@@ -337,9 +344,10 @@ std::string run_section(const json& run) {
     html += "<h3>Sample</h3>\n" + key_value_table(sample, unit_of);
   }
   if (run["config"].is_object()) {
-    html += "<h2>Configuration</h2>\n<p>Every key resolved, as the run used it (meanings: <code>rupture run "
-            "--help-config</code>).</p>\n" +
-            key_value_table(run["config"], loading::config_key_unit);
+    html +=
+        "<h2>Configuration</h2>\n<p>Every key resolved, as the run used it (meanings: <code>rupture run "
+        "--help-config</code>).</p>\n" +
+        key_value_table(run["config"], loading::config_key_unit);
   }
   return html;
 }
@@ -350,27 +358,28 @@ std::string monitor_section(const json& run) {
   if (run.is_null()) return {};
   std::string html = "<h2>On-line monitor</h2>\n";
   const auto& monitor = run["monitor"];
-  if (!monitor.is_object())
-    return html + "<p>Off in this run (<code>monitor.enabled = false</code>).</p>\n";
+  if (!monitor.is_object()) return html + "<p>Off in this run (<code>monitor.enabled = false</code>).</p>\n";
   const auto units = monitor.value("units", json::object());
   const std::string strain_unit = io::escape_markup(units.value("strain", ""));
   const auto num = [](const json& v) { return v.is_number() ? number_text(v.get<double>()) : "–"; };
   const auto& warning = monitor["warning"];
   if (!warning.is_object()) {
-    return html + fmt::format("<p class=\"summary\">The monitor never warned ({} rows seen): it did not confirm an "
-                              "energy-rate maximum while the force still rose.</p>\n",
-                              num(monitor["samples"]));
+    return html + fmt::format(
+                      "<p class=\"summary\">The monitor never warned ({} rows seen): it did not confirm an "
+                      "energy-rate maximum while the force still rose.</p>\n",
+                      num(monitor["samples"]));
   }
   const auto& lead = monitor["lead"];
-  std::string outcome = "the force maximum was not seen afterwards, so whether the warning came in time is unknown";
+  std::string outcome =
+      "the force maximum was not seen afterwards, so whether the warning came in time is unknown";
   if (lead.is_number()) {
     outcome = lead.get<double>() > 0.0
                   ? fmt::format("<strong>before</strong> the force maximum, by {} {}", num(lead), strain_unit)
                   : fmt::format("<strong>after</strong> the force maximum, by {} {} (too late)",
                                 number_text(-lead.get<double>()), strain_unit);
   }
-  html += fmt::format("<p class=\"summary\">The monitor warned at strain {} {}, {}.</p>\n", num(warning["strain"]),
-                      strain_unit, outcome);
+  html += fmt::format("<p class=\"summary\">The monitor warned at strain {} {}, {}.</p>\n",
+                      num(warning["strain"]), strain_unit, outcome);
   const auto interval = [&](const json& v) {
     return v.is_array() && v.size() == 2 ? "[" + num(v[0]) + ", " + num(v[1]) + "]" : std::string("–");
   };
@@ -383,15 +392,16 @@ std::string monitor_section(const json& run) {
       {"lead x_c − warning strain", num(lead), strain_unit},
       {"x_c inside the predicted interval", yes_no(monitor["x_c_held"]), ""},
       {"rows close enough to warn before the earliest predicted x_c", yes_no(warning["in_time"]), ""},
-      {"largest row spacing that would have warned in time", num(warning["max_row_spacing_for_a_timely_warning"]),
-       strain_unit}};
+      {"largest row spacing that would have warned in time",
+       num(warning["max_row_spacing_for_a_timely_warning"]), strain_unit}};
   return html + table({"fact", "value", "unit"}, rows, {false, true, false});
 }
 
 // The paper's claims checked against a scan (scan/claims), as the report's table.
 std::string claims_section(const scan::Claims& claims) {
   std::vector<std::vector<std::string>> rows;
-  for (const auto& claim : claims.rows) rows.push_back({io::escape_markup(claim.paper), io::escape_markup(claim.here)});
+  for (const auto& claim : claims.rows)
+    rows.push_back({io::escape_markup(claim.paper), io::escape_markup(claim.here)});
   return "<h2>The paper's claims against this scan</h2>\n<p>" + io::escape_markup(claims.counts()) +
          " Only accepted points count below (docs/study.md explains each claim).</p>\n" +
          table({"claim (paper, section 5)", "this scan"}, rows);
@@ -416,8 +426,9 @@ std::string results_table(const scan::ResultsTable& results, const std::vector<s
     std::vector<std::string> cells;
     for (std::size_t k = 0; k < columns.size(); ++k) {
       const std::string& field = results.rows[r][columns[k]];
-      cells.push_back(numeric[k] && !field.empty() ? number_text(*results.number(r, results.header[columns[k]]))
-                                                   : io::escape_markup(field));
+      cells.push_back(numeric[k] && !field.empty()
+                          ? number_text(*results.number(r, results.header[columns[k]]))
+                          : io::escape_markup(field));
     }
     rows.push_back(std::move(cells));
   }
@@ -430,18 +441,17 @@ std::string run_report(const fs::path& folder, const std::string& command, std::
   const json analysis = read_json_if_present(folder / "analysis.json");
   const json run = read_json_if_present(folder / "run.json");
   const auto drawn = figures::plot(folder, folder / "figures", {});
-  std::string body =
-      "<h1>Tension test: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
+  std::string body = "<h1>Tension test: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
   body += provenance(folder, command) + run_summary(analysis);
-  body += figures_section(drawn, folder, count) + analysis_section(analysis) + monitor_section(run) + run_section(run);
+  body += figures_section(drawn, folder, count) + analysis_section(analysis) + monitor_section(run) +
+          run_section(run);
   return page("rupture report: " + folder_name(folder), body);
 }
 
 std::string scan_report(const fs::path& folder, const std::string& command, std::size_t& count) {
   const auto drawn = figures::plot(folder, folder / "figures", {});
   const auto results = scan::read_results(folder / "results.csv");
-  std::string body =
-      "<h1>Parameter scan: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
+  std::string body = "<h1>Parameter scan: " + io::escape_markup(folder_name(folder)) + "</h1>\n";
   body += provenance(folder, command);
   const auto claims = scan::check_claims(results);
   body += fmt::format(
@@ -476,8 +486,8 @@ std::string study_report(const fs::path& folder, const std::string& command, std
   const json run = read_json_if_present(run_folder / "run.json");
   const auto run_drawn = figures::plot(run_folder, run_folder / "figures", {});
   const bool have_scan = figures::is_scan_folder(scan_folder);
-  const auto scan_drawn = have_scan ? figures::plot(scan_folder, scan_folder / "figures", {})
-                                    : std::vector<figures::Drawn>{};
+  const auto scan_drawn =
+      have_scan ? figures::plot(scan_folder, scan_folder / "figures", {}) : std::vector<figures::Drawn>{};
   std::vector<figures::Drawn> first, rest;
   for (const auto& f : run_drawn) (f.name == "loading" ? first : rest).push_back(f);
   for (const auto& f : scan_drawn) (f.name == "delay_vs_critical" ? first : rest).push_back(f);
@@ -504,11 +514,11 @@ std::string study_report(const fs::path& folder, const std::string& command, std
   if (have_scan) body += claims_section(*claims);
   body += "<h2>The run</h2>\n" + analysis_section(analysis) + monitor_section(run);
   if (have_scan) {
-    body += "<h2>The scan's points</h2>\n<p>From <code>scan/results.csv</code> (every column there; "
-            "<code>rupture report scan</code> shows them all).</p>\n" +
-            results_table(*results,
-                          {"k_n", "b_d", "status", "steps", "x_c", "x_p", "delta_x", "delta_x_lo95", "delta_x_hi95",
-                           "A_r", "alpha", "class", "accepted", "why", "wall_time"});
+    body +=
+        "<h2>The scan's points</h2>\n<p>From <code>scan/results.csv</code> (every column there; "
+        "<code>rupture report scan</code> shows them all).</p>\n" +
+        results_table(*results, {"k_n", "b_d", "status", "steps", "x_c", "x_p", "delta_x", "delta_x_lo95",
+                                 "delta_x_hi95", "A_r", "alpha", "class", "accepted", "why", "wall_time"});
   }
   body += run_section(run);
   return page("rupture study report: " + folder_name(folder), body);
@@ -518,8 +528,9 @@ std::string study_report(const fs::path& folder, const std::string& command, std
 
 ReportResult write_report(const fs::path& folder, const std::string& command) {
   if (!fs::is_directory(folder)) {
-    throw InputError(folder.string(), "not a folder",
-                     "give a run folder (rupture run), a scan folder (rupture scan) or a study folder (rupture study)");
+    throw InputError(
+        folder.string(), "not a folder",
+        "give a run folder (rupture run), a scan folder (rupture scan) or a study folder (rupture study)");
   }
   const io::FolderLock lock(folder, command);  // one writer: a run still writing it refuses the report
   ReportResult result;

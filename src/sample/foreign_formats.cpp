@@ -270,10 +270,12 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
     // Another workflow's box is often larger than the packing (a margin, a shrink-wrapped boundary):
     // the glued layers are those within one smallest radius of the particles' own extent.
     if (fit_box_to_particles(sample))
-      sample.provenance.push_back("box fitted to the particles' extent (the file's box lies more than one smallest "
-                                  "radius outside them)");
+      sample.provenance.push_back(
+          "box fitted to the particles' extent (the file's box lies more than one smallest "
+          "radius outside them)");
     assign_glued_layers(sample);
-    sample.provenance.push_back("glued layers: particles within one smallest radius of the bottom and top faces");
+    sample.provenance.push_back(
+        "glued layers: particles within one smallest radius of the bottom and top faces");
   }
   return sample;
 }

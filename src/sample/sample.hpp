@@ -30,12 +30,12 @@ struct Box {
 
 struct Sample {
   Box box;
-  std::vector<std::int64_t> id;         // stable ids, written in every output
-  std::vector<Vec3> position;           // mm
-  std::vector<double> radius;           // mm
-  std::vector<ParticleGroup> group;     // glued layer membership
-  std::vector<Bond> bonds;              // sorted by (i, j), i < j
-  double density = default_density;     // g/mm^3; a run config may override it
+  std::vector<std::int64_t> id;      // stable ids, written in every output
+  std::vector<Vec3> position;        // mm
+  std::vector<double> radius;        // mm
+  std::vector<ParticleGroup> group;  // glued layer membership
+  std::vector<Bond> bonds;           // sorted by (i, j), i < j
+  double density = default_density;  // g/mm^3; a run config may override it
   // Free-text provenance (tool version, generator inputs, source file), one entry per line; carried
   // through rupture's own format as comment lines, so every sample file says how it was made.
   std::vector<std::string> provenance;

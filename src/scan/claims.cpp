@@ -14,7 +14,7 @@ namespace rupture::scan {
 
 namespace {
 
-constexpr double far_gamma = 5.0;          // Γ above this: the energy maximum far behind x_c (paper fig. 15)
+constexpr double far_gamma = 5.0;  // Γ above this: the energy maximum far behind x_c (paper fig. 15)
 constexpr double large_energy_ratio = 2.0;  // A_r above this: the paper's events with A_r ≈ 3
 constexpr double small_x_c = 10.0;          // %: the paper compares A_r with the FBM band below this x_c
 
@@ -118,18 +118,21 @@ Claims check_claims(const ResultsTable& table) {
                  fmt::format("Γ > {:g}: {}; A_r > {:g}: {}", far_gamma, far, large_energy_ratio, large)});
   std::string brittle;
   for (const double b : brittle_b_d) brittle += (brittle.empty() ? "" : ", ") + fmt::format("{:.3g}", b);
-  out.push_back({"brittle only for b_d < 0.1 mm", "brittle at b_d = " + (brittle.empty() ? "–" : brittle) + " mm"});
+  out.push_back(
+      {"brittle only for b_d < 0.1 mm", "brittle at b_d = " + (brittle.empty() ? "–" : brittle) + " mm"});
   std::string counted;
   for (const auto& [name, count] : classes)
     counted += (counted.empty() ? "" : ", ") + fmt::format("{}: {}", name, count);
   out.push_back({"classes", counted + fmt::format("; rejected as ductile-like: {}", ductile)});
-  out.push_back({"share rejected (paper: 8 of ~200)",
-                 fmt::format("{} of {} separated runs", claims.separated - claims.accepted, claims.separated)});
+  out.push_back(
+      {"share rejected (paper: 8 of ~200)",
+       fmt::format("{} of {} separated runs", claims.separated - claims.accepted, claims.separated)});
   return claims;
 }
 
 std::string claims_markdown(const Claims& claims, const std::string& title) {
-  std::string text = fmt::format("\n### {}\n\n{}\n\n| claim (paper) | here |\n|---|---|\n", title, claims.counts());
+  std::string text =
+      fmt::format("\n### {}\n\n{}\n\n| claim (paper) | here |\n|---|---|\n", title, claims.counts());
   for (const auto& row : claims.rows) text += fmt::format("| {} | {} |\n", row.paper, row.here);
   return text;
 }

@@ -69,7 +69,8 @@ void add_analysis(nlohmann::json& row, const analysis::AnalysisResult& r) {
 
 // Analyses the attempt's curve into analysis.json and the row. A separated run whose curve cannot
 // be analysed is an error; `why` gathers the reasons.
-void analyse_attempt(const std::filesystem::path& attempt, nlohmann::json& row, std::string& status, std::string& why) {
+void analyse_attempt(const std::filesystem::path& attempt, nlohmann::json& row, std::string& status,
+                     std::string& why) {
   analysis::CurveFileInputs inputs;
   inputs.curves = attempt / "curves.csv";
   try {
@@ -233,7 +234,8 @@ bool reanalyze_point(const Plan& plan, const Point& point) {
   if (!result) return false;
   const auto attempt = folder / result->at("attempt").get<std::string>();
   std::string status = result->at("status").get<std::string>();
-  if ((status != status::ok && status != status::no_separation) || !std::filesystem::exists(attempt / "curves.csv"))
+  if ((status != status::ok && status != status::no_separation) ||
+      !std::filesystem::exists(attempt / "curves.csv"))
     return false;
   // The run's part of the row stays; the analysis's part is made anew.
   const nlohmann::json old = result->at("row");
@@ -243,8 +245,9 @@ bool reanalyze_point(const Plan& plan, const Point& point) {
   status = row.value("stop_reason", "") == "separated" ? status::ok : status::no_separation;
   std::string why;
   if (status == status::no_separation)
-    why = fmt::format("not separated at the {} stop (strain {:.4g} %, {} steps)", row.value("stop_reason", ""),
-                      row.value("final_strain", 0.0), row.value("steps", std::uint64_t(0)));
+    why =
+        fmt::format("not separated at the {} stop (strain {:.4g} %, {} steps)", row.value("stop_reason", ""),
+                    row.value("final_strain", 0.0), row.value("steps", std::uint64_t(0)));
   analyse_attempt(attempt, row, status, why);
   row["status"] = status;
   if (status != status::ok) {

@@ -1,8 +1,8 @@
 #include "scan/results.hpp"
 
-#include <charconv>
-
 #include <fmt/format.h>
+
+#include <charconv>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -113,7 +113,8 @@ std::vector<std::string> split_record(std::string_view text, std::size_t& pos, s
 
 }  // namespace
 
-std::string format_results(const std::vector<nlohmann::json>& rows, const std::vector<std::string>& comments) {
+std::string format_results(const std::vector<nlohmann::json>& rows,
+                           const std::vector<std::string>& comments) {
   std::string out;
   for (const auto& c : comments) out += "# " + c + "\n";
   std::vector<std::string> header;
@@ -180,7 +181,8 @@ ResultsTable parse_results(std::string_view text, const std::string& source) {
                        "every row needs one field per header column (empty for a missing value)");
     table.rows.push_back(std::move(fields));
   }
-  if (table.header.empty()) throw InputError(source, "no header line", "the first non-comment line names the columns");
+  if (table.header.empty())
+    throw InputError(source, "no header line", "the first non-comment line names the columns");
   return table;
 }
 

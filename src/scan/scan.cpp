@@ -212,9 +212,9 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
                      fmt::format("{:g} points, more than the {} a scan folder holds", points, max_points),
                      "split the scan into several configs with their own [scan] output");
   const Section rules(root, "rules",
-                      {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_fraction", "ramp_min_steps",
-                       "ramp_max_steps", "max_strain", "max_strain_factor", "max_strain_min", "interval",
-                       "rows_to_first_break"},
+                      {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_fraction",
+                       "ramp_min_steps", "ramp_max_steps", "max_strain", "max_strain_factor",
+                       "max_strain_min", "interval", "rows_to_first_break"},
                       source);
   if (const auto* dt = rules.get("dt"); dt && !(dt->is_string() && rules.text("dt", "") == "auto")) {
     c.dt = rules.number("dt", 0.0);
@@ -314,8 +314,8 @@ namespace {
 // What the per-point rules need of the sample: its critical dt at one stiffness (every spring of
 // the sample is a multiple of k_n, so the limit scales as 1/sqrt(k_n)) and the plate separation.
 struct StepScale {
-  double k_n = 0.0;          // N/mm, where critical_dt was measured
-  double critical_dt = 0.0;  // s
+  double k_n = 0.0;               // N/mm, where critical_dt was measured
+  double critical_dt = 0.0;       // s
   double plate_separation = 0.0;  // mm
 };
 
@@ -355,7 +355,6 @@ void check_dt(const Plan& plan, const StepScale& scale, double dt, const std::fi
 std::string fingerprint_text(std::uint64_t fingerprint) { return fmt::format("{:016x}", fingerprint); }
 
 std::string point_name(double k_n, double b_d) { return fmt::format("kn_{}_bd_{}", k_n, b_d); }
-
 
 Plan make_plan(const ScanConfig& config, const Sample& sample) {
   const loading::RunConfig base = base_config(config);
@@ -410,7 +409,8 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
     p.output_interval = base.output_interval;
     if (config.interval == "scaled")
       p.output_interval = std::max<std::int64_t>(
-          1, std::llround(std::min(steps_to_strain(scale, base, config, k, first_break) / config.rows_to_first_break, 1e12)));
+          1, std::llround(std::min(
+                 steps_to_strain(scale, base, config, k, first_break) / config.rows_to_first_break, 1e12)));
     // Stop a fixed multiple past the strain where bonds start to break (b_d / r0), never later than
     // the base config's max_strain: runs differ by orders of magnitude in the strain they need.
     p.max_strain = base.max_strain;
@@ -425,7 +425,8 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
     p.overrides.push_back(config.dt ? fmt::format("time.dt={}", *config.dt) : "time.dt=\"auto\"");
     p.overrides.push_back(fmt::format("loading.ramp_steps={}", p.ramp_steps));
     p.overrides.push_back(fmt::format("stop.max_strain={}", p.max_strain));
-    if (config.interval == "scaled") p.overrides.push_back(fmt::format("output.interval={}", p.output_interval));
+    if (config.interval == "scaled")
+      p.overrides.push_back(fmt::format("output.interval={}", p.output_interval));
     plan.points.push_back(std::move(p));
   }
   // Bad input fails before anything runs: every point's config, and a given dt against each point's

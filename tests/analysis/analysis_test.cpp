@@ -3,22 +3,22 @@
 // the calibration of the δ_x posterior over many noise seeds.
 #include "analysis/analysis.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numeric>
 
-#include <gtest/gtest.h>
-
+#include "calibration_set.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
-#include "calibration_set.hpp"
 #include "synthetic_curves.hpp"
 
 namespace rupture::analysis {
 namespace {
 
 using testing::add_noise;
-using testing::power_law_curve;
 using testing::force_first_curve;
+using testing::power_law_curve;
 
 TEST(AnalyzeCurve, UniformBundleRecoversClosedForms) {
   const auto r = analyze_curve(power_law_curve(0.0, 2001), {});
@@ -166,7 +166,8 @@ TEST(AnalyzeCurve, UnloadingLoopIsRejectedNamingTheRows) {
   const auto r = analyze_curve(c, {});
   EXPECT_FALSE(r.accepted);
   EXPECT_FALSE(r.delta_x);
-  EXPECT_NE(r.rejection.find("strain decreases from data row 361 (0.36 1) to row 362"), std::string::npos) << r.rejection;
+  EXPECT_NE(r.rejection.find("strain decreases from data row 361 (0.36 1) to row 362"), std::string::npos)
+      << r.rejection;
   EXPECT_NE(r.rejection.find("rows 1-361"), std::string::npos) << r.rejection;
 }
 
@@ -282,9 +283,11 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
   }
   EXPECT_GE(accepted, curves - 1);
   const auto bound = [&](double p) { return 4.0 * std::sqrt(accepted * p * (1.0 - p)); };
-  EXPECT_GE(covered68, 0.6827 * accepted - bound(0.6827)) << "68 % interval coverage (conservative, see above)";
+  EXPECT_GE(covered68, 0.6827 * accepted - bound(0.6827))
+      << "68 % interval coverage (conservative, see above)";
   EXPECT_NEAR(covered95, 0.95 * accepted, std::max(bound(0.95), 2.0)) << "95 % interval coverage";
-  std::printf("finite bundles: %d accepted of %d; coverage 68%%: %d, 95%%: %d\n", accepted, curves, covered68, covered95);
+  std::printf("finite bundles: %d accepted of %d; coverage 68%%: %d, 95%%: %d\n", accepted, curves, covered68,
+              covered95);
 }
 
 // Noise-free curves of every shape in the calibration table: the maxima within 0.2 % and δ_x, Γ, A_r
@@ -326,7 +329,8 @@ TEST(NoiseModel, SeparatesWhiteNoiseFromARandomWalk) {
 TEST(PrecursorOrder, SaysWhatTheIntervalResolves) {
   EXPECT_EQ(precursor_order(0.01, 0.03), "x_p comes before x_c (delta_x > 0 at 95 %)");
   EXPECT_EQ(precursor_order(-0.03, -0.01), "x_p comes after x_c (delta_x < 0 at 95 %)");
-  EXPECT_EQ(precursor_order(-0.01, 0.03), "the order of x_p and x_c is not resolved (the 95 % interval of delta_x includes 0)");
+  EXPECT_EQ(precursor_order(-0.01, 0.03),
+            "the order of x_p and x_c is not resolved (the 95 % interval of delta_x includes 0)");
 }
 
 }  // namespace

@@ -6,14 +6,13 @@
 #pragma once
 
 #include <algorithm>
+#include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <boost/math/special_functions/gamma.hpp>
-#include <boost/math/tools/minima.hpp>
 
 #include "analysis/analysis.hpp"
 #include "core/random.hpp"
@@ -39,8 +38,7 @@ struct Truth {
 inline Shape weibull(double k) {
   char name[32];
   std::snprintf(name, sizeof name, "weibull k=%g", k);
-  return {name,
-          [k](double x) { return x <= 0 ? 0.0 : 1.0 - std::exp(-std::pow(x, k)); },
+  return {name, [k](double x) { return x <= 0 ? 0.0 : 1.0 - std::exp(-std::pow(x, k)); },
           [k](double x) { return x <= 0 ? 0.0 : k * std::pow(x, k - 1) * std::exp(-std::pow(x, k)); },
           std::pow(-std::log(0.002), 1.0 / k)};
 }
@@ -48,7 +46,9 @@ inline Shape weibull(double k) {
 inline Shape power_law(double alpha) {
   char name[32];
   std::snprintf(name, sizeof name, "powerlaw alpha=%g", alpha);
-  return {name, [alpha](double x) { return x <= 0 ? 0.0 : x >= 1 ? 1.0 : std::pow(x, 1 + alpha); },
+  return {name, [alpha](double x) { return x <= 0   ? 0.0
+                                           : x >= 1 ? 1.0
+                                                    : std::pow(x, 1 + alpha); },
           [alpha](double x) { return x <= 0 || x >= 1 ? 0.0 : (1 + alpha) * std::pow(x, alpha); }, 1.0};
 }
 
@@ -66,7 +66,8 @@ inline Shape log_normal(double sigma) {
   return {name, [=](double x) { return x <= 0 ? 0.0 : 0.5 * std::erfc(-std::log(x) / (sigma * s2)); },
           [=](double x) {
             return x <= 0 ? 0.0
-                          : std::exp(-std::pow(std::log(x), 2) / (2 * sigma * sigma)) / (x * sigma * std::sqrt(2 * M_PI));
+                          : std::exp(-std::pow(std::log(x), 2) / (2 * sigma * sigma)) /
+                                (x * sigma * std::sqrt(2 * M_PI));
           },
           std::exp(3.0 * sigma)};
 }
@@ -104,7 +105,8 @@ inline Shape weibull_mixture_narrow() {
 // A second held-out set, defined before the first held-out run was looked at in detail and not
 // run while the method was changed after it (bench/analysis_calibration held-out-2).
 inline std::vector<Shape> second_held_out_shapes() {
-  return {weibull(1.5), power_law(6), uniform(0.5, 1.0), log_normal(0.5), gamma_shape(4), weibull_mixture_narrow()};
+  return {weibull(1.5),    power_law(6),   uniform(0.5, 1.0),
+          log_normal(0.5), gamma_shape(4), weibull_mixture_narrow()};
 }
 
 // 60 % Weibull(k=3, λ=1) + 40 % Weibull(k=3, λ=2).
@@ -121,13 +123,14 @@ inline Shape weibull_mixture_wide() {
 // A third held-out set, fixed before the smoothing-sensitivity term was tried
 // (bench/analysis_calibration held-out-3).
 inline std::vector<Shape> third_held_out_shapes() {
-  return {weibull(2.5), power_law(1), uniform(0.1, 0.9), log_normal(0.2), gamma_shape(8), weibull_mixture_wide()};
+  return {weibull(2.5),    power_law(1),   uniform(0.1, 0.9),
+          log_normal(0.2), gamma_shape(8), weibull_mixture_wide()};
 }
 
 // The nine shapes of the calibration table.
 inline std::vector<Shape> shapes() {
-  return {weibull(2), weibull(3), weibull(5), power_law(-0.5), power_law(3), power_law(10), uniform(0.2, 1.0),
-          log_normal(0.3), weibull_mixture()};
+  return {weibull(2),    weibull(3),        weibull(5),      power_law(-0.5),  power_law(3),
+          power_law(10), uniform(0.2, 1.0), log_normal(0.3), weibull_mixture()};
 }
 
 inline double force_of(const Shape& s, double x) { return x * (1.0 - s.cdf(x)); }
@@ -141,8 +144,8 @@ inline double argmax(const std::function<double(double)>& f, double x_end) {
   for (int i = 1; i < n; ++i) {
     if (f(x_end * i / n) > f(x_end * best / n)) best = i;
   }
-  const auto r = boost::math::tools::brent_find_minima([&](double x) { return -f(x); }, x_end * (best - 1) / n,
-                                                       x_end * (best + 1) / n, 52);
+  const auto r = boost::math::tools::brent_find_minima([&](double x) { return -f(x); },
+                                                       x_end * (best - 1) / n, x_end * (best + 1) / n, 52);
   return r.first;
 }
 

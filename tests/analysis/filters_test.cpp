@@ -2,11 +2,11 @@
 // plus the properties the pipeline relies on.
 #include "analysis/filters.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <complex>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "core/random.hpp"
 #include "io/csv.hpp"
@@ -77,7 +77,8 @@ TEST(Butterworth, DesignMatchesScipyTransferFunction) {
         const auto c = [&](const char* name) { return table.column(name)[r]; };
         h_scipy *= (c("b0") + c("b1") * z + c("b2") * z * z) / (c("a0") + c("a1") * z + c("a2") * z * z);
       }
-      EXPECT_NEAR(std::abs(h_ours - h_scipy), 0.0, 1e-12) << "order " << order << " cutoff " << cutoff << " omega " << omega;
+      EXPECT_NEAR(std::abs(h_ours - h_scipy), 0.0, 1e-12)
+          << "order " << order << " cutoff " << cutoff << " omega " << omega;
     }
     // Half power at the cutoff: |H(e^{iπ Wn})|² = 1/2.
     const std::complex<double> z = std::exp(std::complex<double>(0.0, -3.14159265358979323846 * cutoff));
@@ -89,7 +90,9 @@ TEST(Butterworth, DesignMatchesScipyTransferFunction) {
 
 TEST(Butterworth, SosfiltfiltMatchesScipy) {
   const Fixture f;
-  for (auto [order, cutoff, name] : {std::tuple{4, 0.1, "bw_4_0.1"}, {3, 0.25, "bw_3_0.25"}, {2, 0.05, "bw_2_0.05"},
+  for (auto [order, cutoff, name] : {std::tuple{4, 0.1, "bw_4_0.1"},
+                                     {3, 0.25, "bw_3_0.25"},
+                                     {2, 0.05, "bw_2_0.05"},
                                      {6, 0.4, "bw_6_0.4"}}) {
     const auto sections = butterworth_lowpass(order, cutoff);
     expect_close(sosfiltfilt(sections, f.y()), f.expected.column(name), 1e-10, name);
@@ -133,8 +136,10 @@ TEST(AutomaticFilter, SmoothsNoiseButKeepsThePeak) {
     for (std::size_t i = 0; i < n; ++i) square += (filtered[i] - clean[i]) * (filtered[i] - clean[i]);
     // The filtered curve is much closer to the truth than the noise level (0.002) is.
     EXPECT_LT(std::sqrt(square / n), 0.4 * 0.002) << to_string(kind);
-    if (kind == FilterKind::butterworth) EXPECT_LT(settings.cutoff, 0.1);
-    else EXPECT_GT(settings.savgol_window, 31);
+    if (kind == FilterKind::butterworth)
+      EXPECT_LT(settings.cutoff, 0.1);
+    else
+      EXPECT_GT(settings.savgol_window, 31);
   }
 }
 

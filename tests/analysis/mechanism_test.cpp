@@ -1,12 +1,13 @@
 // The breaking-mechanism classifier (paper section 5.2): one curve and break log per class, built
 // with known features, through the whole pipeline; and the crack measurement on break logs.
+#include "analysis/mechanism.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "analysis/analysis.hpp"
-#include "analysis/mechanism.hpp"
 #include "core/random.hpp"
 
 namespace rupture::analysis {
@@ -23,7 +24,8 @@ Curve weibull_curve(double k, double x_end, double undulation = 0.0) {
     const double x = x_end * i / 2000.0;
     const double intact = std::exp(-std::pow(x, k));
     // Acoustic waves in the loading phase: a standing oscillation of the load, before x_c only.
-    const double wave = x < 0.8 * x_c ? undulation * std::sin(12.0 * 3.14159265358979 * x / x_c) * x / x_c : 0.0;
+    const double wave =
+        x < 0.8 * x_c ? undulation * std::sin(12.0 * 3.14159265358979 * x / x_c) * x / x_c : 0.0;
     c.strain.push_back(x);
     c.force.push_back(x * intact * (1.0 + wave));
     c.energy.push_back(0.5 * x * x * intact);

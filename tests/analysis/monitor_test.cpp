@@ -3,9 +3,9 @@
 // peaks first.
 #include "analysis/monitor.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "fbm/power_law.hpp"
 #include "synthetic_curves.hpp"
@@ -83,7 +83,8 @@ TEST(Monitor, SaysWhenTheRowsAreTooCoarseToWarnInTime) {
   const double spacing = coarse.warning->max_row_spacing;
   ASSERT_GT(spacing, 0.0);
   EXPECT_LT(spacing, 0.01);
-  const auto fine = replay(testing::power_law_curve(alpha, static_cast<std::size_t>(1.0 / (0.5 * spacing)) + 1));
+  const auto fine =
+      replay(testing::power_law_curve(alpha, static_cast<std::size_t>(1.0 / (0.5 * spacing)) + 1));
   ASSERT_TRUE(fine.warning);
   EXPECT_TRUE(fine.warning->in_time);
   EXPECT_LT(fine.warning->strain, fbm::power_law::maxima(alpha).x_c);

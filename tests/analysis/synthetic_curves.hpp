@@ -31,7 +31,8 @@ inline Curve power_law_curve(double alpha, std::size_t n, double x_max = 1.0) {
 
 // The strain-controlled curve of a bundle whose fibers break at `sorted_thresholds`, per N κ = 1,
 // sampled at `rows` strains on [0, x_end].
-inline Curve bundle_curve(const std::vector<double>& sorted_thresholds, std::size_t rows, double x_end, std::string source) {
+inline Curve bundle_curve(const std::vector<double>& sorted_thresholds, std::size_t rows, double x_end,
+                          std::string source) {
   Curve c;
   c.source = std::move(source);
   c.strain_unit = c.force_unit = c.energy_unit = "1";

@@ -4,7 +4,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cstdio>
@@ -60,7 +59,8 @@ TEST(Progress, CiSilencesStderrButNotTheLog) {
   }
   EXPECT_EQ(lines_of(testing::slurp(dir / "quiet.log")).size(), 2u);  // one update line, the end line
   ::unsetenv("CI");
-  EXPECT_EQ(Progress::output_mode(), isatty(fileno(stderr)) ? Progress::Mode::terminal : Progress::Mode::batch);
+  EXPECT_EQ(Progress::output_mode(),
+            isatty(fileno(stderr)) ? Progress::Mode::terminal : Progress::Mode::batch);
   if (before != nullptr) ::setenv("CI", saved.c_str(), 1);
 }
 

@@ -1,7 +1,8 @@
 #include "core/random.hpp"
 
-#include <cmath>
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace rupture {
 namespace {
@@ -12,7 +13,8 @@ TEST(Rng, SameKeyGivesSameSequence) {
 }
 
 TEST(Rng, StreamsAndItemsAreIndependent) {
-  Rng a(42, RandomStream::fbm_thresholds, 0), b(42, RandomStream::sample_radii, 0), c(42, RandomStream::fbm_thresholds, 1);
+  Rng a(42, RandomStream::fbm_thresholds, 0), b(42, RandomStream::sample_radii, 0),
+      c(42, RandomStream::fbm_thresholds, 1);
   const auto x = a.next_u64();
   EXPECT_NE(x, b.next_u64());
   EXPECT_NE(x, c.next_u64());

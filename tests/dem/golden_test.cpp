@@ -61,7 +61,8 @@ TEST(Golden, RigidFastPullThroughFailure) {
   Params p;
   p.break_distance = 0.005;
   p.glue_mode = GlueMode::rigid;
-  expect_pinned(p, 5000.0, 3000, {0x15d47815311ff9f2ull, 0x403b567081ad6ec2ull, 0x4030aeea7b52e97dull, 11392});
+  expect_pinned(p, 5000.0, 3000,
+                {0x15d47815311ff9f2ull, 0x403b567081ad6ec2ull, 0x4030aeea7b52e97dull, 11392});
 }
 
 // Spring glue with viscous damping and ESyS's relative rule with scaled stiffness.
@@ -72,7 +73,8 @@ TEST(Golden, SpringGlueDampedRelativeRule) {
   p.break_rule = BreakRule::relative;
   p.break_distance = 0.01;
   p.damping = 2e4;
-  expect_pinned(p, 5000.0, 2500, {0x63c340065b1990ffull, 0x40521cac861658e5ull, 0x4041b2198c7a4ca3ull, 11236});
+  expect_pinned(p, 5000.0, 2500,
+                {0x63c340065b1990ffull, 0x40521cac861658e5ull, 0x4041b2198c7a4ca3ull, 11236});
 }
 
 // The skin is a speed setting only: a narrow, the default and a wide one give the same state bit for

@@ -50,8 +50,9 @@ TEST(Physics, FirstBreakOfATiltedBondSolvesTheAffineStretch) {
   Params p;
   p.break_distance = 0.01;
   const double angle = units::pi / 3.0, r0 = 1.0;
-  const double expected =
-      std::sqrt(((r0 + 0.01) * (r0 + 0.01) - std::pow(r0 * std::sin(angle), 2)) / std::pow(r0 * std::cos(angle), 2)) - 1.0;
+  const double expected = std::sqrt(((r0 + 0.01) * (r0 + 0.01) - std::pow(r0 * std::sin(angle), 2)) /
+                                    std::pow(r0 * std::cos(angle), 2)) -
+                          1.0;
   EXPECT_NEAR(first_break_strain(tilted_pair(r0, angle), p), expected, 1e-12);
   EXPECT_NEAR(expected, 0.01 / std::pow(std::cos(angle), 2), 0.02 * expected) << "about b / (r0 cos^2)";
   Sample across = tilted_pair(r0, 0.0);

@@ -87,7 +87,8 @@ TEST(FbmCli, CurvesAreLoadingCurvesWithUnitsAndBalancedWork) {
 // "-" is standard output: the same CSV a file would get, and nothing written beside it.
 TEST(FbmCli, CurvesToStdoutEqualTheFile) {
   TempDir dir;
-  const auto file = run_rupture("fbm curves --dist uniform --points 11 -o '" + (dir / "c.csv").string() + "'");
+  const auto file =
+      run_rupture("fbm curves --dist uniform --points 11 -o '" + (dir / "c.csv").string() + "'");
   ASSERT_EQ(file.exit_code, 0) << file.err;
   const auto piped = run_rupture("fbm curves --dist uniform --points 11 -o -");
   ASSERT_EQ(piped.exit_code, 0) << piped.err;

@@ -325,9 +325,12 @@ TEST(Figures, ScanFiguresFromResultsTable) {
   EXPECT_EQ(rows_of(map, "class hyper-elastic"), std::size_t(ScanFixture::hyper_elastic));
   EXPECT_EQ(rows_of(map, "class semi-ductile"), std::size_t(ScanFixture::semi_ductile));
   // Ductile-like points are rejected, never classed: no such group.
-  EXPECT_TRUE(std::none_of(map.begin(), map.end(), [](const Block& b) { return b.title == "class ductile"; }));
-  EXPECT_EQ(rows_of(map, "rejected as ductile-like (x_c not identifiable)"), std::size_t(ScanFixture::rejected_ductile));
-  EXPECT_EQ(rows_of(map, "rejected for another reason (see results.csv why)"), std::size_t(ScanFixture::rejected_other));
+  EXPECT_TRUE(
+      std::none_of(map.begin(), map.end(), [](const Block& b) { return b.title == "class ductile"; }));
+  EXPECT_EQ(rows_of(map, "rejected as ductile-like (x_c not identifiable)"),
+            std::size_t(ScanFixture::rejected_ductile));
+  EXPECT_EQ(rows_of(map, "rejected for another reason (see results.csv why)"),
+            std::size_t(ScanFixture::rejected_other));
   EXPECT_EQ(rows_of(map, "points not analysed (not separated, unstable, failed or unfinished)"),
             std::size_t(ScanFixture::without_class));
   EXPECT_EQ(rows_of(map, "points with Gamma > 5"), std::size_t(ScanFixture::gamma_above_5));

@@ -17,7 +17,7 @@ struct ScanFixture {
   static constexpr int points = 10;
   static constexpr int brittle = 2, hyper_elastic = 1, semi_ductile = 3;
   static constexpr int rejected_ductile = 1, rejected_other = 1;  // separated, rejected: no class
-  static constexpr int without_class = 2;  // one not separated, one failed
+  static constexpr int without_class = 2;                         // one not separated, one failed
   static constexpr int gamma_above_5 = 2;  // stars in figure 15, the Γ > 5 group of figure 17
   static constexpr int gamma_below_1 = 2, gamma_1_to_5 = 2;
   static constexpr int positive_delay = 5;  // analysed with δ_x > 0: drawn in figure 16
@@ -42,8 +42,9 @@ inline void write_scan_fixture(const std::filesystem::path& folder) {
       {1e4, 1e-2, "ok", "semi-ductile", 0.3, 0.08, 3.5, 0.95},
       {1e2, 1e-1, "ok", "semi-ductile", 5.0, 0.9, 7.0, 0.80},
       {1e4, 1e-1, "ok", "semi-ductile", 2.0, -0.1, 12.0, 0.70},
-      {1e3, 1e-1, "ok", "rejected: ductile-like breaking, x_c not identifiable: 4 significant force maxima (>= 3)", 0,
-       0, 0, 0},
+      {1e3, 1e-1, "ok",
+       "rejected: ductile-like breaking, x_c not identifiable: 4 significant force maxima (>= 3)", 0, 0, 0,
+       0},
       {1e3, 1e-2, "ok", "rejected: δ_x too uncertain", 0, 0, 0, 0},
       {1e2, 1.0, "no_separation", "", 0.0, 0.0, 0.0, 0.0},
       {1e4, 1.0, "error", "", 0.0, 0.0, 0.0, 0.0},

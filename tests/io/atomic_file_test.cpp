@@ -1,7 +1,8 @@
 #include "io/atomic_file.hpp"
 
-#include <filesystem>
 #include <gtest/gtest.h>
+
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"

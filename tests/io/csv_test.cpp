@@ -11,7 +11,8 @@ namespace {
 using ::testing::HasSubstr;
 
 TEST(Csv, ParsesCommentsHeaderUnitsAndRows) {
-  const auto t = parse_csv("# made by hand\n# second\nstrain[%],force [N]\n0,1.5\n0.5, -2e-3\r\n\n1,+3\n", "t.csv");
+  const auto t =
+      parse_csv("# made by hand\n# second\nstrain[%],force [N]\n0,1.5\n0.5, -2e-3\r\n\n1,+3\n", "t.csv");
   ASSERT_EQ(t.comments.size(), 2u);
   EXPECT_EQ(t.comments[0], "made by hand");
   ASSERT_EQ(t.header.size(), 2u);
@@ -59,14 +60,13 @@ TEST(Csv, MissingHeaderOrColumnIsRejected) {
   }
 }
 
-TEST(Csv, UnreadableFileIsAnInputError) {
-  EXPECT_THROW(read_csv("/nonexistent/dir/curve.csv"), InputError);
-}
+TEST(Csv, UnreadableFileIsAnInputError) { EXPECT_THROW(read_csv("/nonexistent/dir/curve.csv"), InputError); }
 
 // The layouts other tools write.
 TEST(Csv, LammpsFixAveTimeHeaderInTheLastCommentLine) {
   const auto t = parse_csv(
-      "# Time-averaged data for fix strain_force\n# TimeStep v_strain v_force c_pe\n1000 0.001 2.5 0.1\n2000 0.002 "
+      "# Time-averaged data for fix strain_force\n# TimeStep v_strain v_force c_pe\n1000 0.001 2.5 0.1\n2000 "
+      "0.002 "
       "4.5e0 0.3\n",
       "log.ave");
   ASSERT_EQ(t.header.size(), 4u);

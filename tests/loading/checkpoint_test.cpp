@@ -286,9 +286,13 @@ TEST(Checkpoint, CheckpointKeysAreChecked) {
     }
     return std::string("(accepted)");
   };
-  EXPECT_THAT(message("keep = 0"), HasSubstr("c.toml: checkpoint.keep: 0 is outside the plausible range [1, 100]; the default is 2"));
-  EXPECT_THAT(message("every = -1"), HasSubstr("c.toml: checkpoint.every: -1 is outside the plausible range [0, 1e+15] steps"));
-  EXPECT_THAT(message("minutes = -2"), HasSubstr("c.toml: checkpoint.minutes: -2 is outside the plausible range [0, 1e+06] min"));
+  EXPECT_THAT(
+      message("keep = 0"),
+      HasSubstr("c.toml: checkpoint.keep: 0 is outside the plausible range [1, 100]; the default is 2"));
+  EXPECT_THAT(message("every = -1"),
+              HasSubstr("c.toml: checkpoint.every: -1 is outside the plausible range [0, 1e+15] steps"));
+  EXPECT_THAT(message("minutes = -2"),
+              HasSubstr("c.toml: checkpoint.minutes: -2 is outside the plausible range [0, 1e+06] min"));
   EXPECT_THAT(message("often = 3"), HasSubstr("c.toml: checkpoint.often: unknown key"));
   EXPECT_EQ(message("every = 100\nminutes = 0"), "(accepted)");
 }

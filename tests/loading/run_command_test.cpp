@@ -1,7 +1,7 @@
 // `rupture run` and `rupture check` end to end: configs rejected with clear messages, an unstable
 // run stopped with a diagnosis, identical bytes for any thread count, runs to separation.
-#include <gmock/gmock.h>
 #include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -108,8 +108,10 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   EXPECT_GE(breaks.rows(), 8u) << "at least one bond per column";
   // run.log ends with the run's last line: steps, strain, breaks and why it stopped.
   const std::string log = slurp(dir / "out" / "run.log");
-  EXPECT_NE(log.find(fmt::format("run: {}/", report["steps"].get<std::uint64_t>())), std::string::npos) << log;
-  EXPECT_NE(log.find(fmt::format("{} broken, stopped: separated (end)", breaks.rows())), std::string::npos) << log;
+  EXPECT_NE(log.find(fmt::format("run: {}/", report["steps"].get<std::uint64_t>())), std::string::npos)
+      << log;
+  EXPECT_NE(log.find(fmt::format("{} broken, stopped: separated (end)", breaks.rows())), std::string::npos)
+      << log;
 }
 
 // One switch keeps a run going past separation: it stops at max_strain, with the separation still
@@ -135,9 +137,11 @@ TEST(RunCommand, PreStressedSampleRunsWithItsInitialEnergyInTheBalance) {
   Sample block = make_cubic_block(4, 8, 2, 0.5);
   for (auto& bond : block.bonds) bond.rest_length *= 0.9995;  // 1 mm -> stretched by 5e-4 mm
   save_sample(block, dir / "pre.sample");
-  const auto config = write_config(dir, "[sample]\nfile = \"pre.sample\"\n[bonds]\nstiffness = 1e3\n"
-                                        "break_distance = 0.002\n[loading]\nspeed = 500.0\nramp_steps = 500\n"
-                                        "[stop]\nextra_strain = 0.5\nmax_strain = 20.0\n[output]\ninterval = 50\n");
+  const auto config =
+      write_config(dir,
+                   "[sample]\nfile = \"pre.sample\"\n[bonds]\nstiffness = 1e3\n"
+                   "break_distance = 0.002\n[loading]\nspeed = 500.0\nramp_steps = 500\n"
+                   "[stop]\nextra_strain = 0.5\nmax_strain = 20.0\n[output]\ninterval = 50\n");
   const auto r = run_rupture("run " + quoted(config) + " -o " + quoted(dir / "out"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));

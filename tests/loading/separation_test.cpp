@@ -1,8 +1,8 @@
 // The load-free separation rule on hand-made force histories (the connectivity rule is exercised by
 // the tissue runs).
-#include <gtest/gtest.h>
-
 #include "loading/separation.hpp"
+
+#include <gtest/gtest.h>
 
 namespace rupture::loading {
 namespace {

@@ -145,7 +145,8 @@ std::vector<BadInput> bad_inputs() {
        "unknown subcommand 'simulate' of rupture; the subcommands are study, fbm, sample, run, check, bench, "
        "analyze, monitor, plot, scan, report (see rupture --help)"},
       {"unknown_nested_subcommand", "unused.txt", "", "fbm theroy --dist uniform",
-       "unknown subcommand 'theroy' of rupture fbm; the subcommands are theory, curves, simulate (see rupture fbm "
+       "unknown subcommand 'theroy' of rupture fbm; the subcommands are theory, curves, simulate (see "
+       "rupture fbm "
        "--help)"},
       {"config_override_without_value", "good.toml", block_config,
        "run {in} -o {dir}/out --set bonds.stiffness",

@@ -31,13 +31,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace rupture;
+using rupture::testing::chromium;
+using rupture::testing::console_lines;
+using rupture::testing::have_chromium;
 using rupture::testing::run_rupture;
 using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
-using rupture::testing::chromium;
-using rupture::testing::console_lines;
-using rupture::testing::have_chromium;
 using ::testing::HasSubstr;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
@@ -273,8 +273,9 @@ TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
   const auto record = nlohmann::json::parse(slurp(run / "run.json"));
   ASSERT_TRUE(record.at("monitor").is_object());
   if (record["monitor"]["warning"].is_object()) {
-    EXPECT_THAT(facts.body_text, HasSubstr(fmt::format("The monitor warned at strain {:.4g} %",
-                                                       record["monitor"]["warning"]["strain"].get<double>())));
+    EXPECT_THAT(facts.body_text,
+                HasSubstr(fmt::format("The monitor warned at strain {:.4g} %",
+                                      record["monitor"]["warning"]["strain"].get<double>())));
   } else {
     EXPECT_THAT(facts.body_text, HasSubstr("The monitor never warned"));
   }
@@ -291,11 +292,10 @@ TEST(Report, ScanReportTablesEveryPoint) {
   EXPECT_THAT(r.out, HasSubstr("(3 figures embedded)"));
   const auto facts = check_well_formed(slurp(scan / "report.html"));
   expect_self_contained(facts, scan / "figures");
-  EXPECT_THAT(facts.body_text,
-              HasSubstr(fmt::format("{} points in results.csv, {} separated and accepted",
-                                    ScanFixture::points,
-                                    ScanFixture::points - ScanFixture::without_class - ScanFixture::rejected_ductile -
-                                        ScanFixture::rejected_other)));
+  EXPECT_THAT(facts.body_text, HasSubstr(fmt::format(
+                                   "{} points in results.csv, {} separated and accepted", ScanFixture::points,
+                                   ScanFixture::points - ScanFixture::without_class -
+                                       ScanFixture::rejected_ductile - ScanFixture::rejected_other)));
   EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "semi-ductile"), ScanFixture::semi_ductile);
   EXPECT_EQ(std::count(facts.cells.begin(), facts.cells.end(), "ductile"), 0);
   EXPECT_TRUE(has_cell(facts, "still whole at max_strain"));

@@ -14,10 +14,10 @@ namespace rupture::scan {
 namespace {
 
 using rupture::testing::run_rupture;
+using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using test_support::physics;
-using rupture::testing::shell_quoted;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
 

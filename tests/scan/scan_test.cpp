@@ -20,9 +20,9 @@
 
 #include "core/error.hpp"
 #include "dem/system.hpp"
+#include "figures/scan_fixture.hpp"
 #include "sample/formats.hpp"
 #include "sample/lattice.hpp"
-#include "figures/scan_fixture.hpp"
 #include "scan/claims.hpp"
 #include "scan/farm.hpp"
 #include "scan/results.hpp"
@@ -89,10 +89,11 @@ TEST(ScanPlan, RulesScaleTheRampAndTheStopWithBreakingDistance) {
 
 TEST(ScanPlan, StrainRulesEndTheRampAndSpaceTheRowsByTheFirstBreakStrain) {
   TempDir dir;
-  write(dir / "s.toml", "[scan]\nbase = '" + examples +
-                            "block.toml'\n[grid]\nk_n = { from = 1e2, to = 1e4, count = 2 }\n"
-                            "b_d = { from = 0.002, to = 0.02, count = 2 }\n[rules]\nramp = \"strain\"\n"
-                            "ramp_fraction = 0.1\nramp_min_steps = 1\ninterval = \"scaled\"\nrows_to_first_break = 10\n");
+  write(dir / "s.toml",
+        "[scan]\nbase = '" + examples +
+            "block.toml'\n[grid]\nk_n = { from = 1e2, to = 1e4, count = 2 }\n"
+            "b_d = { from = 0.002, to = 0.02, count = 2 }\n[rules]\nramp = \"strain\"\n"
+            "ramp_fraction = 0.1\nramp_min_steps = 1\ninterval = \"scaled\"\nrows_to_first_break = 10\n");
   const ScanConfig config = load_scan_config(dir / "s.toml");
   const Plan plan = make_plan(config, unit_block());
   ASSERT_EQ(plan.points.size(), 4u);
@@ -109,7 +110,8 @@ TEST(ScanPlan, StrainRulesEndTheRampAndSpaceTheRowsByTheFirstBreakStrain) {
     // The ramp v/2 (1 - cos) over T covers half of v T: 10 % of the first-break strain takes 0.2 x steps.
     EXPECT_NEAR(double(p.ramp_steps), 0.2 * steps, 1.0) << p.name;
     EXPECT_NEAR(double(p.output_interval), steps / 10.0, 1.0) << p.name;
-    EXPECT_NE(std::find(p.overrides.begin(), p.overrides.end(), fmt::format("output.interval={}", p.output_interval)),
+    EXPECT_NE(std::find(p.overrides.begin(), p.overrides.end(),
+                        fmt::format("output.interval={}", p.output_interval)),
               p.overrides.end());
   }
   // dt ~ 1/sqrt(k_n): 100 times the stiffness, ten times the steps to the same strain; b_d ten
@@ -117,11 +119,13 @@ TEST(ScanPlan, StrainRulesEndTheRampAndSpaceTheRowsByTheFirstBreakStrain) {
   EXPECT_NEAR(steps_to_first_break(plan.points[2]) / steps_to_first_break(plan.points[0]), 10.0, 1e-9);
   EXPECT_NEAR(double(plan.points[3].output_interval) / double(plan.points[2].output_interval), 10.0, 0.2);
   // Bad values are refused with the key.
-  write(dir / "bad.toml", "[scan]\nbase = '" + examples + "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\n"
-                          "interval = \"fine\"\n");
+  write(dir / "bad.toml", "[scan]\nbase = '" + examples +
+                              "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\n"
+                              "interval = \"fine\"\n");
   EXPECT_THROW((void)load_scan_config(dir / "bad.toml"), InputError);
-  write(dir / "bad.toml", "[scan]\nbase = '" + examples + "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\n"
-                          "ramp = \"strain\"\nramp_fraction = 2\n");
+  write(dir / "bad.toml", "[scan]\nbase = '" + examples +
+                              "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\n"
+                              "ramp = \"strain\"\nramp_fraction = 2\n");
   try {
     (void)load_scan_config(dir / "bad.toml");
     ADD_FAILURE() << "ramp_fraction = 2 accepted";
@@ -287,7 +291,8 @@ TEST(ScanClaims, CountAndSummariseTheAcceptedPointsOfAKnownTable) {
   EXPECT_EQ(claims.points, std::size_t(F::points));
   EXPECT_EQ(claims.separated, 8u);
   EXPECT_EQ(claims.accepted, std::size_t(F::brittle + F::hyper_elastic + F::semi_ductile));
-  EXPECT_EQ(claims.counts(), "10 points: 10 ran, 8 separated, 6 accepted, 2 rejected, 2 not separated or failed.");
+  EXPECT_EQ(claims.counts(),
+            "10 points: 10 ran, 8 separated, 6 accepted, 2 rejected, 2 not separated or failed.");
   ASSERT_EQ(claims.rows.size(), 9u);
   const auto here = [&](std::size_t row) { return claims.rows[row].here; };
   EXPECT_EQ(here(0), "5 of 6 have δ_x > 0; 0 of 6 with the 95 % lower bound > 0");
@@ -387,7 +392,8 @@ std::optional<int> interrupt_scan(const std::filesystem::path& config, const std
 TEST(ScanCommand, ReanalyzeRewritesTheAnalysisAndKeepsTheRuns) {
   TempDir dir;
   const auto scan = dir / "scan";
-  const auto first = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " + shell_quoted(scan));
+  const auto first =
+      run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " + shell_quoted(scan));
   ASSERT_EQ(first.exit_code, 0) << first.err;
   std::filesystem::copy_file(scan / "results.csv", dir / "before.csv");
   const auto point = scan / "points" / "kn_100_bd_0.002";

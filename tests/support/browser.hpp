@@ -22,14 +22,15 @@ struct BrowserRun {
 
 // Headless Chromium on a page: screenshot 1200 x 2000 into `screenshot` (if given) or the DOM after
 // the load event on stdout, console messages on stderr (--enable-logging=stderr).
-inline BrowserRun chromium(const std::filesystem::path& page, const std::filesystem::path& work, const std::string& mode) {
+inline BrowserRun chromium(const std::filesystem::path& page, const std::filesystem::path& work,
+                           const std::string& mode) {
   std::filesystem::create_directories(work / "profile");
   const std::string command = fmt::format(
       "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync --user-data-dir={} "
       "--enable-logging=stderr --v=0 --window-size=1200,2000 {} 'file://{}' >{} 2>{}",
-      shell_quoted(work / "profile"), mode, std::filesystem::absolute(page).string(), shell_quoted(work / "stdout"),
-      shell_quoted(work / "stderr"));
+      shell_quoted(work / "profile"), mode, std::filesystem::absolute(page).string(),
+      shell_quoted(work / "stdout"), shell_quoted(work / "stderr"));
   BrowserRun run;
   const int status = std::system(command.c_str());
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

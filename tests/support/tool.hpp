@@ -2,14 +2,14 @@
 // its exit code and output; make a fresh temporary folder per test.
 #pragma once
 
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <gtest/gtest.h>
 
 namespace rupture::testing {
 
@@ -26,7 +26,8 @@ class TempDir {
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-    for (auto& ch : name) if (ch == '/') ch = '_';
+    for (auto& ch : name)
+      if (ch == '/') ch = '_';
     path_ = std::filesystem::temp_directory_path() / ("rupture_" + name + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
@@ -62,10 +63,11 @@ inline std::string shell_quoted(const std::filesystem::path& path) { return "'" 
 // stdin from /dev/null unless `stdin_file` is given, and CI=1 so no progress line is drawn.
 inline ToolResult run_rupture(const std::string& args, const std::string& stdin_file = "/dev/null") {
   const auto dir = std::filesystem::temp_directory_path();
-  const auto stem = "rupture_tool_" + std::to_string(::getpid()) + "_" + std::to_string(reinterpret_cast<std::uintptr_t>(&args));
+  const auto stem = "rupture_tool_" + std::to_string(::getpid()) + "_" +
+                    std::to_string(reinterpret_cast<std::uintptr_t>(&args));
   const auto out = dir / (stem + ".out"), err = dir / (stem + ".err");
-  const std::string command = "CI=1 '" + std::string(RUPTURE_BINARY) + "' " + args + " <'" + stdin_file + "' >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
+  const std::string command = "CI=1 '" + std::string(RUPTURE_BINARY) + "' " + args + " <'" + stdin_file +
+                              "' >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
   ToolResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

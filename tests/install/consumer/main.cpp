@@ -8,9 +8,10 @@
 #include "rupture/version.hpp"
 
 int main() {
-  const auto dist = rupture::fbm::parse_distribution_spec("uniform", [](const std::string&) { return std::string(); });
+  const auto dist =
+      rupture::fbm::parse_distribution_spec("uniform", [](const std::string&) { return std::string(); });
   const auto c = rupture::fbm::theory_characteristics(*dist);
   const auto& band = rupture::analysis::power_law_band();
-  std::printf("rupture %s: x_p %.6f x_c %.6f x_m %.6f A_r band %.3f-%.3f\n", rupture::version_string, c.x_p, c.x_c,
-              *c.x_m, band.energy_ratio_low, band.energy_ratio_high);
+  std::printf("rupture %s: x_p %.6f x_c %.6f x_m %.6f A_r band %.3f-%.3f\n", rupture::version_string, c.x_p,
+              c.x_c, *c.x_m, band.energy_ratio_low, band.energy_ratio_high);
 }
