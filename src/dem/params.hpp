@@ -7,6 +7,8 @@
 
 #include <cstdint>
 
+#include "sample/sample.hpp"
+
 namespace rupture::dem {
 
 enum class BreakRule : std::uint8_t {
@@ -26,9 +28,9 @@ struct Params {
   double contact_stiffness = 1e3;  // N/mm: repulsion between overlapping unbonded particles
   double glue_stiffness = 1e4;     // N/mm: glue spring (GlueMode::spring only)
   GlueMode glue_mode = GlueMode::spring;
-  double density = 2.5e-4;  // g/mm^3
-  double damping = 0.0;     // 1/s: viscous damping rate, force -damping * m * v
-  double skin = 0.05;       // mm: Verlet-list skin
+  double density = default_density;  // g/mm^3 (sample/sample.hpp: the paper's)
+  double damping = 0.0;              // 1/s: viscous damping rate, force -damping * m * v
+  double skin = 0.05;                // mm: Verlet-list skin
 };
 
 // Which plate a particle is glued to; doubles as the index into per-plate arrays.

@@ -25,20 +25,21 @@ struct RunConfig {
   std::uint64_t seed = 1;                               // 1: generator seed (preset)
   std::optional<double> density;                        // g/mm^3; default: the sample's own
   // [bonds]
-  double bond_stiffness = 1e3;          // N/mm (N/mm^2 with scale_stiffness)
-  double break_distance = 0.05;         // mm (absolute) or 1 (relative)
-  std::string break_rule = "absolute";  // "absolute" | "relative"
-  bool scale_stiffness = false;         // ESyS: k = normalK * r0 / 4
+  // The model's defaults are dem::Params' (one place for each); the factors below are config-only.
+  double bond_stiffness = dem::Params{}.bond_stiffness;  // N/mm (N/mm^2 with scale_stiffness)
+  double break_distance = dem::Params{}.break_distance;  // mm (absolute) or 1 (relative)
+  std::string break_rule = "absolute";                   // "absolute" | "relative"
+  bool scale_stiffness = false;                          // ESyS: k = normalK * r0 / 4
   // [contacts]
   double contact_stiffness_factor = 1.0;  // 1: contact stiffness / k_n
-  double skin = 0.05;                     // mm: Verlet-list skin
+  double skin = dem::Params{}.skin;       // mm: Verlet-list skin to start from
   // [glue]
   std::string glue_mode = "spring";     // "spring" | "rigid"
   double glue_stiffness_factor = 10.0;  // 1: glue stiffness / k_n
   // [loading]
-  double speed = 50.0;              // mm/s
-  std::int64_t ramp_steps = 10000;  // steps of the smooth speed ramp
-  double damping = 0.0;             // 1/s
+  double speed = 50.0;                     // mm/s
+  std::int64_t ramp_steps = 10000;         // steps of the smooth speed ramp
+  double damping = dem::Params{}.damping;  // 1/s
   // [time]
   std::optional<double> dt;        // s; empty: automatic
   double dt_safety = 0.4;          // 1: dt = safety * critical dt

@@ -43,8 +43,8 @@ struct PackingParams {
   std::uint32_t draw_block = 100;
   double min_drawn_rate = 0.05;  // 1
   std::uint32_t fill_block = 2000;
-  double min_fill_rate = 0.08;  // 1
-  double density = 2.5e-4;      // g/mm^3, stored in the sample
+  double min_fill_rate = 0.08;       // 1
+  double density = default_density;  // g/mm^3, stored in the sample
 };
 
 // What the generator did, for reports and for the tests of its promises.

@@ -11,7 +11,7 @@ namespace rupture {
 
 // n touching spheres of radius `radius` (mm) stacked along y, centres 2*radius apart, bonded to
 // their neighbours; the first is glued to the bottom plate, the last to the top plate (n >= 2).
-inline Sample make_chain(std::uint32_t n, double radius, double density = 2.5e-4) {
+inline Sample make_chain(std::uint32_t n, double radius, double density = default_density) {
   Sample sample;
   sample.density = density;
   const double spacing = 2.0 * radius;
@@ -32,7 +32,7 @@ inline Sample make_chain(std::uint32_t n, double radius, double density = 2.5e-4
 // bonds: its stiffness is known exactly. The layer y = 0 is glued to the bottom plate, the layer
 // y = max to the top plate. Index = (iy * nz + iz) * nx + ix.
 inline Sample make_cubic_block(std::uint32_t nx, std::uint32_t ny, std::uint32_t nz, double radius,
-                               double density = 2.5e-4) {
+                               double density = default_density) {
   Sample sample;
   sample.density = density;
   const double spacing = 2.0 * radius;
