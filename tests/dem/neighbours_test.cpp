@@ -1,0 +1,90 @@
+// dem/neighbours: the Verlet list's invariants, which the skin-independence of the forces rests on:
+// every slice sorted, holding exactly the unbonded pairs within r_a + r_b + skin, released pairs
+// inserted in sorted place, the rebuild test and the skin's adaptation.
+#include "dem/neighbours.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sample/lattice.hpp"
+
+namespace rupture::dem {
+namespace {
+
+struct Block {
+  Sample sample = make_cubic_block(4, 4, 3, 0.5);
+  Params params;
+  ParticleStore particles{sample, params};
+  BondStore bonds{sample, particles.storage_of_sample, params};
+};
+
+std::vector<std::uint32_t> slice(const NeighbourList& list, std::uint32_t a) {
+  return {list.list.begin() + list.start[a], list.list.begin() + list.start[a] + list.count[a]};
+}
+
+TEST(NeighbourList, SlicesAreSortedAndHoldExactlyTheUnbondedPairsWithinTheCutoff) {
+  Block block;
+  NeighbourList list;
+  list.skin = 0.5;  // mm: reaches the face diagonals (1.414 mm apart, cutoff 1.5 mm), not the body ones
+  list.build(block.particles.hot, block.bonds, block.particles.max_radius, false);
+  const auto& p = block.particles.hot;
+  std::size_t pairs = 0;
+  for (std::uint32_t a = 0; a < block.particles.size(); ++a) {
+    const auto mine = slice(list, a);
+    EXPECT_TRUE(std::is_sorted(mine.begin(), mine.end())) << "slot " << a;
+    std::vector<std::uint32_t> expected;
+    for (std::uint32_t b = 0; b < block.particles.size(); ++b) {
+      if (b == a || block.bonds.linked(a, b)) continue;
+      const double d = std::hypot(p.x[b] - p.x[a], p.y[b] - p.y[a], p.z[b] - p.z[a]);
+      if (d < p.radius[a] + p.radius[b] + list.skin) expected.push_back(b);
+    }
+    EXPECT_EQ(mine, expected) << "slot " << a;
+    pairs += mine.size();
+    EXPECT_EQ(list.start[a + 1] - list.start[a], mine.size() + block.bonds.link_count[a])
+        << "room for every pair its bonds may release";
+  }
+  EXPECT_GT(pairs, 0u) << "the face diagonals are candidates";
+}
+
+TEST(NeighbourList, ReleasedPairsGoInSortedPlaceAtBothEnds) {
+  Block block;
+  NeighbourList list;
+  list.skin = 0.5;
+  list.build(block.particles.hot, block.bonds, block.particles.max_radius, false);
+  const std::uint32_t bond = 7, i = block.bonds.i[bond], j = block.bonds.j[bond];
+  block.bonds.unlink(bond);
+  list.add_pair(i, j);
+  for (const auto& [self, other] : {std::pair{i, j}, std::pair{j, i}}) {
+    const auto mine = slice(list, self);
+    EXPECT_TRUE(std::is_sorted(mine.begin(), mine.end()));
+    EXPECT_EQ(std::count(mine.begin(), mine.end(), other), 1);
+  }
+}
+
+TEST(NeighbourList, RebuildIsDueWhenTwoMovesTogetherCouldCloseTheSkin) {
+  NeighbourList list;
+  list.skin = 0.1;
+  EXPECT_FALSE(list.stale(0.06, 0.04)) << "two particles closing by at most 0.1 mm cannot touch";
+  EXPECT_TRUE(list.stale(0.06, 0.0401));
+  EXPECT_FALSE(list.stale(0.09, 0.0)) << "one particle alone may move almost the whole skin";
+  EXPECT_TRUE(list.stale(INFINITY, 0.0)) << "a non-finite move forces a rebuild";
+}
+
+TEST(NeighbourList, SkinWidensForShortLivedListsAndNarrowsBack) {
+  NeighbourList list;
+  list.skin = 0.05;
+  list.adapt_skin(10, 0.05, 0.2);  // the list lasted 10 steps
+  EXPECT_DOUBLE_EQ(list.skin, 0.075);
+  for (std::uint64_t step = 20; step < 200; step += 10) list.adapt_skin(step, 0.05, 0.2);
+  EXPECT_DOUBLE_EQ(list.skin, 0.2) << "capped at the widest";
+  list.adapt_skin(300, 0.05, 0.2);  // lasted 110 steps: kept
+  EXPECT_DOUBLE_EQ(list.skin, 0.2);
+  for (std::uint64_t step = 1000; step < 10000; step += 1000) list.adapt_skin(step, 0.05, 0.2);
+  EXPECT_DOUBLE_EQ(list.skin, 0.05) << "back to the narrowest when lists last long";
+}
+
+}  // namespace
+}  // namespace rupture::dem
