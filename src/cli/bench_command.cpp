@@ -134,6 +134,14 @@ nlohmann::json bench_run(const BenchOptions& options, int threads) {
   const auto folder =
       std::filesystem::temp_directory_path() / fmt::format("rupture-bench-run-{}-{}", ::getpid(), threads);
   std::filesystem::remove_all(folder);
+  // The temporary folder goes however the run ends (a failed run throws).
+  struct RemoveAtExit {
+    std::filesystem::path folder;
+    ~RemoveAtExit() {
+      std::error_code ignored;
+      std::filesystem::remove_all(folder, ignored);
+    }
+  } remove_at_exit{folder};
   loading::RunOptions run_options;
   run_options.echo_monitor = false;
   const double cpu_start = process_cpu_seconds();
@@ -151,7 +159,6 @@ nlohmann::json bench_run(const BenchOptions& options, int threads) {
       line = end + 1;
     }
   }
-  std::filesystem::remove_all(folder);
   return {{"config", options.run},
           {"particles", sample.size()},
           {"bonds", sample.bonds.size()},
@@ -220,6 +227,9 @@ void add_bench_command(CLI::App& app, int&) {
       if (!(f >= 0.0 && f < 1.0))
         throw InputError("--broken", fmt::format("{} is not a fraction in [0, 1)", f), "use e.g. 0.5");
     if (!options->run.empty()) return print_run_benches(*options);
+    if (!options->overrides.empty())
+      throw InputError("--set", "overrides a run config's keys, and only --run names one",
+                       "add --run CONFIG, or drop --set");
     const Sample sample = bench_sample(*options);
     nlohmann::json results = nlohmann::json::array();
     if (!options->json)

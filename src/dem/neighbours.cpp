@@ -118,12 +118,16 @@ void NeighbourList::add_pair(std::uint32_t a, std::uint32_t b) {
 }
 
 void NeighbourList::adapt_skin(std::uint64_t step, double narrowest, double widest) {
+  // A rebuild costs ~15-30 steps of force work on the reduced tissue (docs/performance.md): lists
+  // that last under 50 steps make rebuilds a large share, past 500 a wider skin only costs.
+  constexpr std::uint64_t short_lived = 50, long_lived = 500;
+  constexpr double factor = 1.5;
   const std::uint64_t lasted = step - built_at_step;
   built_at_step = step;
-  if (lasted < 50)
-    skin = std::min(widest, 1.5 * skin);
-  else if (lasted > 500)
-    skin = std::max(narrowest, skin / 1.5);
+  if (lasted < short_lived)
+    skin = std::min(widest, factor * skin);
+  else if (lasted > long_lived)
+    skin = std::max(narrowest, skin / factor);
 }
 
 std::size_t NeighbourList::bytes() const {

@@ -102,5 +102,25 @@ TEST(BenchCommand, JsonReportsThroughputAndEqualHashesPerThreadCount) {
   EXPECT_NEAR(results[2]["broken_bonds"].get<double>() / results[2]["bonds"].get<double>(), 0.5, 0.03);
 }
 
+// A whole run timed: the same outputs for one and two threads, the figures a reader needs, and
+// the temporary folder gone afterwards; --set without --run is refused.
+TEST(BenchCommand, WholeRunGivesEqualOutputsPerThreadCount) {
+  const auto r = run_rupture("bench --run '" + examples +
+                             "block.toml' --threads 1 --threads 2 --set stop.max_steps=2000 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto results = nlohmann::json::parse(r.out)["results"];
+  ASSERT_EQ(results.size(), 2u);
+  for (const auto& result : results) {
+    for (const char* key : {"steps", "wall_s", "cpu_s", "particle_steps_per_s", "stage_seconds",
+                            "neighbour_rebuilds", "outputs_hash"})
+      EXPECT_TRUE(result.contains(key)) << key;
+    EXPECT_GT(result["steps"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(results[0]["outputs_hash"], results[1]["outputs_hash"]) << "1 vs 2 threads";
+  const auto refused = run_rupture("bench --sample tissue-small --set stop.max_steps=10");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--run"), std::string::npos) << refused.err;
+}
+
 }  // namespace
 }  // namespace rupture
