@@ -24,7 +24,9 @@
 #include "loading/checkpoint.hpp"
 #include "loading/interrupt.hpp"
 #include "loading/ramp.hpp"
+#include "loading/run_folder.hpp"
 #include "loading/separation.hpp"
+#include "loading/snapshot.hpp"
 #include "rupture/version.hpp"
 #include "sample/checks.hpp"
 #include "sample/formats.hpp"
@@ -58,38 +60,6 @@ const std::vector<std::string> curve_header = {"time[s]",
 const std::vector<std::string> break_header = {"step[1]",         "time[s]",   "strain[%]", "particle_a[1]",
                                                "particle_b[1]",   "x[mm]",     "y[mm]",     "z[mm]",
                                                "rest_length[mm]", "energy[mJ]"};
-
-// One ParaView snapshot: particles (id, radius, group, velocity) in sample order and the intact
-// bonds with their extension r - r0 (mm) and relative extension (r - r0) / r0.
-void write_snapshot(const dem::System& system, const Sample& sample, const std::filesystem::path& path,
-                    const std::string& provenance) {
-  io::VtkPolyData data;
-  data.comments = {provenance};
-  std::vector<double> radius(sample.size()), velocity(3 * sample.size());
-  std::vector<std::int64_t> ids(sample.size()), groups(sample.size());
-  data.points.resize(sample.size());
-  for (std::size_t a = 0; a < sample.size(); ++a) {
-    data.points[a] = system.position(a);
-    const Vec3 v = system.velocity(a);
-    velocity[3 * a] = v.x;
-    velocity[3 * a + 1] = v.y;
-    velocity[3 * a + 2] = v.z;
-    radius[a] = sample.radius[a];
-    ids[a] = sample.id[a];
-    groups[a] = static_cast<std::int64_t>(sample.group[a]);
-  }
-  std::vector<double> extension, relative;
-  for (std::size_t b = 0; b < sample.bonds.size(); ++b) {
-    if (!system.bond_intact(b)) continue;
-    data.lines.push_back({sample.bonds[b].i, sample.bonds[b].j});
-    extension.push_back(system.bond_extension(b));
-    relative.push_back(extension.back() / sample.bonds[b].rest_length);
-  }
-  data.point_data = {
-      {"id", 1, ids}, {"radius_mm", 1, radius}, {"group", 1, groups}, {"velocity_mm_per_s", 3, velocity}};
-  data.line_data = {{"extension_mm", 1, extension}, {"relative_extension", 1, relative}};
-  io::write_vtp(path, data);
-}
 
 Sample build_sample(const RunConfig& config) {
   if (!config.sample_lattice.empty()) {
@@ -196,87 +166,6 @@ namespace {
 // mode grows by orders of magnitude within a few steps, so the exact value hardly matters.
 constexpr double max_step_move = 0.5;  // 1, of the particle's radius
 
-// What `rupture run` leaves in its folder, and what analyze, plot and report add about that run:
-// the files --overwrite removes (and nothing else, so a user's own files beside them survive).
-const std::vector<std::string> run_outputs = {"run.json",      "curves.csv",  "breaks.csv",  "snapshots.pvd",
-                                              "analysis.json", "report.html", "checkpoints", "snapshots",
-                                              "figures",       "run.log"};
-
-// A folder's run.json, if rupture run wrote one there (null otherwise, also when unreadable).
-nlohmann::json read_run_record(const std::filesystem::path& folder) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(folder / "run.json", ec)) return nullptr;
-  try {
-    auto record = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
-    if (record.is_object() && record.value("tool", "") == "rupture run") return record;
-  } catch (const std::exception&) {
-  }
-  return nullptr;
-}
-
-// A run that cannot go on: it finished, or blew up (the same config would blow up again).
-bool has_ended(const nlohmann::json& record) {
-  const std::string status = record.value("status", "");
-  return status == "finished" || (status == "failed" && record.value("stop_reason", "") == "unstable");
-}
-
-// The folder of a new run, claimed before the first step: not `/`, created, locked against other
-// writers, free of a run that could still be resumed, of a run that ended (unless `existing` says
-// overwrite) and of files rupture did not write, writable, and with room for its checkpoints. A
-// refusal leaves the folder as it was (one it created is removed again).
-std::unique_ptr<io::FolderLock> claim_new_folder(const std::filesystem::path& folder, const RunConfig& config,
-                                                 const dem::System& system, const std::string& command,
-                                                 Existing existing) {
-  namespace fs = std::filesystem;
-  const std::string fix = "choose a writable folder with -o/--out or output.folder";
-  std::error_code ec;
-  const fs::path resolved = fs::weakly_canonical(fs::absolute(folder, ec), ec);
-  if (!ec && resolved == resolved.root_path())
-    throw InputError(folder.string(), "is the root folder; a run writes a dozen files into its folder",
-                     "give a folder of its own, e.g. -o run");
-  const bool existed = fs::exists(folder, ec);
-  fs::create_directories(folder, ec);
-  if (ec)
-    throw InputError(folder.string(), fmt::format("cannot create the output folder ({})", ec.message()), fix);
-  auto lock = std::make_unique<io::FolderLock>(folder, command);
-  const auto refuse = [&](const std::string& problem, const std::string& remedy) {
-    lock.reset();
-    if (!existed) fs::remove_all(folder, ec);
-    throw InputError(folder.string(), problem, remedy);
-  };
-  const nlohmann::json record = read_run_record(folder);
-  if (record.is_null()) {
-    for (const auto& entry : fs::directory_iterator(folder, ec))
-      if (entry.path().filename() != io::folder_lock_name)
-        refuse(fmt::format("holds files that rupture run did not write (e.g. {})",
-                           entry.path().filename().string()),
-               "give an empty or new folder with -o/--out or output.folder");
-  } else if (!has_ended(record) && !list_checkpoints(folder).empty()) {
-    refuse("holds the checkpoints of an unfinished run",
-           fmt::format("continue it with `rupture run --resume {}`, or remove {} to start over",
-                       folder.string(), (folder / "checkpoints").string()));
-  } else if (existing == Existing::refuse) {
-    const std::string status = record.value("status", "");
-    refuse(has_ended(record) || status == "failed"
-               ? fmt::format("holds a {} run ({}), which is kept", status, record.value("stop_reason", ""))
-               : "holds a run that was stopped before its first checkpoint, which is kept",
-           "give --overwrite to replace it, or choose another folder with -o/--out");
-  } else {
-    for (const auto& name : run_outputs) fs::remove_all(folder / name, ec);
-  }
-  // A checkpoint is the engine state plus a little text; the newest `keep` stay while one more is
-  // written. The curve files are small beside them.
-  const double checkpoint_bytes = double(system.state_bytes()) + 65536.0;
-  const double needed = double(config.checkpoint_keep + 1) * checkpoint_bytes;
-  const auto space = fs::space(folder, ec);
-  if (!ec && double(space.available) < needed)
-    refuse(fmt::format("has {:.3g} MB free, but {} checkpoints of {:.3g} MB need {:.3g} MB",
-                       double(space.available) / 1e6, config.checkpoint_keep + 1, checkpoint_bytes / 1e6,
-                       needed / 1e6),
-           "free space, choose another output folder, or lower checkpoint.keep");
-  return lock;
-}
-
 analysis::MonitorOptions monitor_options(const RunConfig& config) {
   return {.window = std::size_t(config.monitor_window),
           .drop = config.monitor_drop,
@@ -311,362 +200,462 @@ struct ResumePoint {
   std::unique_ptr<io::FolderLock>& lock;
 };
 
-RunSummary execute(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
-                   const std::string& command, const RunOptions& options, ResumePoint* resume) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  omp_set_num_threads(int(config.threads));
-  const dem::Params params = config.dem_params(sample.density);
-  dem::System system(sample, params);
-  // What the sample holds before the first step (bonds whose rest lengths differ from the initial
-  // distances: a pre-stressed sample, e.g. LAMMPS's binned rest lengths). The energy balance counts
-  // from it: W = (E now) - (E at the start). Taken from the sample, so a resumed run has it too.
-  const dem::Energies start_energies = system.energies();
-  const double initial_energy = start_energies.elastic + start_energies.contact + start_energies.glue;
-  const RunPlan plan = plan_run(config, system, sample);
-  const SpeedRamp ramp{config.speed, plan.ramp_time};
-  const double l0 = plan.plate_separation;
-  const std::uint64_t fingerprint = sample_fingerprint(sample);
-  const std::filesystem::path curves_file = folder / "curves.csv", breaks_file = folder / "breaks.csv";
+// One run from its first (or resumed) step to its stop. The stages, in the order execute() calls
+// them: open the folder (new or resumed) and its files, step until a stop rule fires (each step:
+// breaks written, a row and the energy balance when due, snapshots, the separation check,
+// checkpoints, progress), then the closing record. Each stage is a member; the run's state is
+// the members, so no stage hides a parameter.
+class TensionRun {
+ public:
+  TensionRun(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
+             const std::string& command, const RunOptions& options, ResumePoint* resume)
+      : config_(config),
+        sample_(sample),
+        folder_(folder),
+        command_(command),
+        options_(options),
+        resume_(resume),
+        system_(sample, config.dem_params(sample.density)),
+        plan_(plan_run(config, system_, sample)),
+        ramp_{config.speed, plan_.ramp_time},
+        l0_(plan_.plate_separation),
+        curves_file_(folder / "curves.csv"),
+        breaks_file_(folder / "breaks.csv"),
+        monitor_(monitor_options(config)) {
+    // What the sample holds before the first step (bonds whose rest lengths differ from the initial
+    // distances: a pre-stressed sample, e.g. LAMMPS's binned rest lengths). The energy balance
+    // counts from it: W = (E now) - (E at the start). Taken from the sample, so a resumed run has it.
+    const dem::Energies start = system_.energies();
+    initial_energy_ = start.elastic + start.contact + start.glue;
+  }
 
-  LoopState loop;
-  nlohmann::json resumes = nlohmann::json::array();
-  std::unique_ptr<io::FolderLock> lock;
-  std::unique_ptr<io::CsvStream> curves, breaks;
-  analysis::Monitor monitor(monitor_options(config));
-  if (resume != nullptr) {
-    lock = std::move(resume->lock);
-    const Checkpoint& c = resume->loaded.checkpoint;
-    system.restore_state(c.engine, resume->loaded.file.string());
-    loop = c.loop;
-    // Everything is checked before a byte of the folder changes: both files still begin with
-    // exactly what the checkpoint saw, and the monitor replays from that part.
-    const io::FilePrefix curves_prefix{loop.curves_bytes, loop.curves_hash},
-        breaks_prefix{loop.breaks_bytes, loop.breaks_hash};
+  RunSummary execute() {
+    if (resume_ != nullptr)
+      open_resumed();
+    else
+      lock_ = claim_new_folder(folder_, {.command = command_,
+                                         .overwrite = options_.existing == Existing::overwrite,
+                                         .checkpoint_keep = std::uint64_t(config_.checkpoint_keep),
+                                         .checkpoint_state_bytes = system_.state_bytes()});
+    write_first_record();
+    if (resume_ == nullptr) open_new_files();
+    summary_.max_energy_error = loop_.max_energy_error;
+    summary_.max_relative_energy_error = loop_.max_relative_energy_error;
+    try {
+      step_to_a_stop();
+    } catch (const std::exception& e) {
+      // A write failed (a full disk): the checkpoints written so far are intact.
+      if (dynamic_cast<const RunError*>(&e) == nullptr &&
+          dynamic_cast<const std::filesystem::filesystem_error*>(&e) == nullptr)
+        throw;
+      fail_on_write(e);
+    }
+    const std::string failure = close();
+    if (!stable_) throw RunError(failure);
+    return summary_;
+  }
+
+ private:
+  double strain_now() const { return 100.0 * system_.top_plate().displacement / l0_; }
+  std::size_t broken_bonds() const { return system_.bond_count() - system_.intact_bonds(); }
+  double wall_now() const {
+    return wall_before_ +
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+  }
+
+  // Everything is checked before a byte of the folder changes: both files still begin with exactly
+  // what the checkpoint saw, and the monitor replays from that part.
+  void open_resumed() {
+    lock_ = std::move(resume_->lock);
+    const Checkpoint& c = resume_->loaded.checkpoint;
+    system_.restore_state(c.engine, resume_->loaded.file.string());
+    loop_ = c.loop;
+    wall_before_ = loop_.wall_seconds;
+    last_checkpoint_ = resume_->loaded.file;
+    const io::FilePrefix curves_prefix{loop_.curves_bytes, loop_.curves_hash},
+        breaks_prefix{loop_.breaks_bytes, loop_.breaks_hash};
     for (const auto& [file, prefix] :
-         {std::pair{curves_file, curves_prefix}, std::pair{breaks_file, breaks_prefix}})
+         {std::pair{curves_file_, curves_prefix}, std::pair{breaks_file_, breaks_prefix}})
       if (const auto mismatch = io::prefix_mismatch(file, prefix, c.format >= 2))
         throw InputError(
             file.string(), *mismatch,
             "the run folder was changed after the checkpoint; restore it, or remove its checkpoints "
             "and start over with --overwrite");
-    if (config.monitor) replay(monitor, curves_file, loop);
-    curves = std::make_unique<io::CsvStream>(curves_file, curves_prefix);
-    breaks = std::make_unique<io::CsvStream>(breaks_file, breaks_prefix);
+    if (config_.monitor) replay(monitor_, curves_file_, loop_);
+    curves_ = std::make_unique<io::CsvStream>(curves_file_, curves_prefix);
+    breaks_ = std::make_unique<io::CsvStream>(breaks_file_, breaks_prefix);
     // Earlier resumes stay listed in run.json.
     try {
-      const auto before = nlohmann::json::parse(io::read_text_file(folder / "run.json"));
-      if (before.contains("resumes") && before["resumes"].is_array()) resumes = before["resumes"];
+      const auto before = nlohmann::json::parse(io::read_text_file(folder_ / "run.json"));
+      if (before.contains("resumes") && before["resumes"].is_array()) resumes_ = before["resumes"];
     } catch (const std::exception&) {  // an unreadable run.json loses only that list
     }
-    resumes.push_back({{"command", resume->command},
-                       {"checkpoint", resume->loaded.file.string()},
-                       {"step", c.engine.step},
-                       {"warnings", resume->loaded.warnings}});
-  } else {
-    lock = claim_new_folder(folder, config, system, command, options.existing);
+    resumes_.push_back({{"command", resume_->command},
+                        {"checkpoint", resume_->loaded.file.string()},
+                        {"step", c.engine.step},
+                        {"warnings", resume_->loaded.warnings}});
   }
 
-  nlohmann::json report = {{"tool", "rupture run"},
-                           {"version", version_string},
-                           {"command", command},
-                           {"config", to_json(config)},
-                           {"sample", to_json(compute_stats(sample))},
-                           {"plan", to_json(plan)},
-                           {"threads", config.threads},
-                           {"status", "running"}};
-  if (!resumes.empty()) report["resumes"] = resumes;
-  try {
-    io::write_json_atomically(folder / "run.json", report);
-  } catch (const RunError& e) {
-    throw InputError(folder.string(), fmt::format("is not writable ({})", e.what()),
-                     "choose a writable folder with -o/--out or output.folder");
-  }
-  if (resume == nullptr) {
-    // The header names the command that started the run; a resume keeps it, so the files of an
-    // interrupted run are byte for byte those of an uninterrupted one.
-    const std::vector<std::string> comments = {
-        fmt::format("rupture {} run: {}", version_string, command),
-        "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
-    curves = std::make_unique<io::CsvStream>(curves_file, comments, curve_header);
-    breaks = std::make_unique<io::CsvStream>(breaks_file, comments, break_header);
-  }
-
-  RunSummary summary;
-  summary.max_energy_error = loop.max_energy_error;
-  summary.max_relative_energy_error = loop.max_relative_energy_error;
-  const auto strain_now = [&] { return 100.0 * system.top_plate().displacement / l0; };
-  std::string instability;      // what gave the instability away, naming the particle ("" while stable)
-  bool stop_requested = false;  // options.on_row said stop
-  const auto record = [&] {
-    const dem::Energies e = system.energies();
-    const double w = system.plate_work();
-    // Energy gained since the start: what the plates' work must pay for.
-    const double total = e.elastic + e.kinetic + e.contact + e.glue + system.released_energy() +
-                         system.damping_energy() - initial_energy;
-    curves->row({system.time(), double(system.steps_done()), strain_now(), system.force_top(),
-                 system.force_bottom(), e.elastic, e.kinetic, e.contact, e.glue, w, system.released_energy(),
-                 system.damping_energy(), double(system.intact_bonds()),
-                 double(system.bond_count() - system.intact_bonds()), double(e.contacts)});
-    curves->flush();
-    ++loop.curves_rows;
-    loop.last_recorded = system.steps_done();
-    if (config.monitor) {
-      const auto warning = monitor.add_point(strain_now(), system.force_top(), e.elastic);
-      if (warning && options.echo_monitor) {
-        fmt::print(
-            "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the "
-            "force "
-            "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
-            warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
-        if (!warning->in_time)
-          fmt::print(
-              "monitor: the rows are too far apart to warn in time (the warning comes after the earliest "
-              "predicted "
-              "x_c); output.interval giving rows at most {:.3g} % apart would have warned before it\n",
-              warning->max_row_spacing);
-      }
+  // run.json as the run starts ("running"); the closing record completes it.
+  void write_first_record() {
+    record_ = {{"tool", "rupture run"},
+               {"version", version_string},
+               {"command", command_},
+               {"config", to_json(config_)},
+               {"sample", to_json(compute_stats(sample_))},
+               {"plan", to_json(plan_)},
+               {"threads", config_.threads},
+               {"status", "running"}};
+    if (!resumes_.empty()) record_["resumes"] = resumes_;
+    try {
+      io::write_json_atomically(folder_ / "run.json", record_);
+    } catch (const RunError& e) {
+      throw InputError(folder_.string(), fmt::format("is not writable ({})", e.what()),
+                       "choose a writable folder with -o/--out or output.folder");
     }
-    if (options.on_row && !options.on_row({system.steps_done(), strain_now(), system.force_top(),
-                                           std::size_t(system.bond_count() - system.intact_bonds())}))
-      stop_requested = true;
-    loop.max_work = std::max(loop.max_work, std::abs(w));
+  }
+
+  // The header names the command that started the run; a resume keeps it, so the files of an
+  // interrupted run are byte for byte those of an uninterrupted one.
+  void open_new_files() {
+    const std::vector<std::string> comments = {
+        fmt::format("rupture {} run: {}", version_string, command_),
+        "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
+    curves_ = std::make_unique<io::CsvStream>(curves_file_, comments, curve_header);
+    breaks_ = std::make_unique<io::CsvStream>(breaks_file_, comments, break_header);
+  }
+
+  void step_to_a_stop() {
+    // run.log: a line a minute and one at the end (steps, rate, ETA, strain, breaks), for batch jobs.
+    Progress progress("run", double(plan_.estimated_steps), folder_ / "run.log");
+    LoadFreeWatch load_free(config_.load_free_fraction, config_.load_free_strain, loop_.load_free);
+    if (resume_ == nullptr) {
+      if (config_.snapshot_interval > 0) snapshot();
+      stable_ = record_row();
+    }
+    while (stable_) {
+      const std::uint64_t n = system_.steps_done();
+      if (n >= std::uint64_t(config_.max_steps)) {
+        summary_.stop_reason = "max_steps";
+        break;
+      }
+      system_.step(plan_.dt, ramp_.at(double(n + 1) * plan_.dt));
+      if (const dem::StepMove& move = system_.last_step_move(); !(move.fraction <= max_step_move)) {
+        instability_ = fmt::format("particle id {} moved {:.3g} of its radius in one step (more than {:g})",
+                                   sample_.id[move.sample_index], move.fraction, max_step_move);
+        stable_ = false;
+        break;
+      }
+      load_free.add(system_.force_top());
+      write_breaks();
+      const std::uint64_t done = n + 1;
+      const double strain = strain_now();
+      if (done % std::uint64_t(config_.output_interval) == 0 && !(stable_ = record_row())) break;
+      if (config_.snapshot_interval > 0 && done % std::uint64_t(config_.snapshot_interval) == 0) snapshot();
+      if (!loop_.separated && done % std::uint64_t(config_.separation_check_interval) == 0)
+        check_separation(load_free, strain);
+      if (stop_rule_fired(strain)) break;
+      // Everything of this step is written: a checkpoint here resumes at the next one.
+      signal_ = pending_interrupt();
+      if (signal_ == 0 && stop_requested_) signal_ = SIGINT;
+      if (signal_ != 0 || checkpoint_due(done)) {
+        loop_.load_free = load_free.state();
+        checkpoint();
+      }
+      if (signal_ != 0) {
+        summary_.stop_reason = "interrupted";
+        break;
+      }
+      progress.update_with(double(done),
+                           [&] { return fmt::format("strain {:.3f} %, {} broken", strain, broken_bonds()); });
+    }
+    if (stable_ && signal_ == 0 && loop_.last_recorded != system_.steps_done()) stable_ = record_row();
+    progress.finish(
+        double(system_.steps_done()),
+        fmt::format("strain {:.3f} %, {} broken, stopped: {}", strain_now(), broken_bonds(),
+                    summary_.stop_reason.empty() ? std::string(stable_ ? "interrupted" : "unstable")
+                                                 : summary_.stop_reason));
+  }
+
+  void write_breaks() {
+    auto& events = system_.break_events();
+    if (events.empty()) return;
+    for (const auto& ev : events)
+      breaks_->row({double(ev.step), system_.time(), strain_now(), double(sample_.id[ev.i]),
+                    double(sample_.id[ev.j]), ev.midpoint.x, ev.midpoint.y, ev.midpoint.z, ev.rest_length,
+                    ev.energy});
+    breaks_->flush();
+    events.clear();
+  }
+
+  void check_separation(LoadFreeWatch& load_free, double strain) {
+    const bool broken = system_.intact_bonds() < system_.bond_count();
+    if (separated(system_, sets_))
+      loop_.separation_rule = "connectivity";
+    else if (load_free.check(strain, broken))
+      loop_.separation_rule = "load_free";
+    loop_.separated = !loop_.separation_rule.empty();
+    loop_.separation_strain = strain;
+  }
+
+  bool stop_rule_fired(double strain) {
+    if (config_.stop_at_separation && loop_.separated &&
+        strain >= loop_.separation_strain + config_.extra_strain)
+      summary_.stop_reason = "separated";
+    else if (strain >= config_.max_strain)
+      summary_.stop_reason = "max_strain";
+    return !summary_.stop_reason.empty();
+  }
+
+  // A curves.csv row, the monitor fed, the caller's on_row asked, and the energy balance checked:
+  // false when it shows an instability (instability_ says what gave it away).
+  bool record_row() {
+    const dem::Energies e = system_.energies();
+    const double w = system_.plate_work();
+    // Energy gained since the start: what the plates' work must pay for.
+    const double total = e.elastic + e.kinetic + e.contact + e.glue + system_.released_energy() +
+                         system_.damping_energy() - initial_energy_;
+    curves_->row({system_.time(), double(system_.steps_done()), strain_now(), system_.force_top(),
+                  system_.force_bottom(), e.elastic, e.kinetic, e.contact, e.glue, w,
+                  system_.released_energy(), system_.damping_energy(), double(system_.intact_bonds()),
+                  double(broken_bonds()), double(e.contacts)});
+    curves_->flush();
+    ++loop_.curves_rows;
+    loop_.last_recorded = system_.steps_done();
+    if (config_.monitor) feed_monitor(e.elastic);
+    if (options_.on_row &&
+        !options_.on_row({system_.steps_done(), strain_now(), system_.force_top(), broken_bonds()}))
+      stop_requested_ = true;
+    check_energy_balance(w, total, e.kinetic);
+    if (instability_.empty()) return true;
+    instability_ +=
+        fmt::format(", fastest particle id {}", sample_.id[system_.sample_index_of_largest_speed()]);
+    return false;
+  }
+
+  void feed_monitor(double elastic_energy) {
+    const auto warning = monitor_.add_point(strain_now(), system_.force_top(), elastic_energy);
+    if (!warning || !options_.echo_monitor) return;
+    fmt::print(
+        "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the force "
+        "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",
+        warning->strain, warning->x_p, warning->x_c.low, warning->x_c.high);
+    if (!warning->in_time)
+      fmt::print(
+          "monitor: the rows are too far apart to warn in time (the warning comes after the earliest "
+          "predicted x_c); output.interval giving rows at most {:.3g} % apart would have warned before "
+          "it\n",
+          warning->max_row_spacing);
+  }
+
+  // `w` the plates' work, `total` the energy gained and released since the start (mJ).
+  void check_energy_balance(double w, double total, double kinetic) {
+    loop_.max_work = std::max(loop_.max_work, std::abs(w));
     const double error = std::abs(w - total);
     if (std::isfinite(error)) {
-      summary.max_energy_error = std::max(summary.max_energy_error, error);
+      summary_.max_energy_error = std::max(summary_.max_energy_error, error);
       // Relative to the energy in play: the plates' work, or a pre-stressed sample's own energy.
-      const double scale = std::max(loop.max_work, initial_energy);
-      if (scale > 0.0) summary.max_relative_energy_error = summary.max_energy_error / scale;
+      const double scale = std::max(loop_.max_work, initial_energy_);
+      if (scale > 0.0) summary_.max_relative_energy_error = summary_.max_energy_error / scale;
     }
     // Energy appearing from nowhere (kinetic energy growing without the plates' work to pay for
     // it): the balance broken by half of what was put in, and by more than the energy of a 1e-6
     // strain, k_n l0^2 1e-12, so that rounding at rest is never mistaken for it.
-    const double floor = 1e-12 * params.bond_stiffness * l0 * l0;
+    const double floor = 1e-12 * system_.params().bond_stiffness * l0_ * l0_;
     if (!std::isfinite(total) || !std::isfinite(w))
-      instability = "energies are no longer finite numbers";
-    else if (error > 0.5 * std::max({loop.max_work, total, initial_energy}) && error > floor)
-      instability = fmt::format(
+      instability_ = "energies are no longer finite numbers";
+    else if (error > 0.5 * std::max({loop_.max_work, total, initial_energy_}) && error > floor)
+      instability_ = fmt::format(
           "the energy balance broke down: the plates did {:.4g} mJ of work but the sample gained and "
-          "released "
-          "{:.4g} mJ (kinetic {:.4g} mJ)",
-          w, total, e.kinetic);
-    if (instability.empty()) return true;
-    instability += fmt::format(", fastest particle id {}", sample.id[system.sample_index_of_largest_speed()]);
-    return false;
-  };
+          "released {:.4g} mJ (kinetic {:.4g} mJ)",
+          w, total, kinetic);
+  }
 
-  const auto snapshot = [&] {
-    const std::string name = fmt::format("snapshots/step_{:010d}.vtp", system.steps_done());
-    std::filesystem::create_directories(folder / "snapshots");
-    write_snapshot(system, sample, folder / name,
-                   fmt::format("rupture {} run: {}; step {}, strain {:.6g} %", version_string, command,
-                               system.steps_done(), strain_now()));
-    loop.snapshots.push_back({system.time(), name});
-    io::write_pvd(folder / "snapshots.pvd", loop.snapshots);
-  };
+  void snapshot() {
+    const std::string name = fmt::format("snapshots/step_{:010d}.vtp", system_.steps_done());
+    std::filesystem::create_directories(folder_ / "snapshots");
+    write_snapshot(system_, sample_, folder_ / name,
+                   fmt::format("rupture {} run: {}; step {}, strain {:.6g} %", version_string, command_,
+                               system_.steps_done(), strain_now()));
+    loop_.snapshots.push_back({system_.time(), name});
+    io::write_pvd(folder_ / "snapshots.pvd", loop_.snapshots);
+  }
 
-  const double wall_before = loop.wall_seconds;
-  const auto wall_now = [&] {
-    return wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  };
-  std::filesystem::path last_checkpoint = resume != nullptr ? resume->loaded.file : std::filesystem::path();
-  auto last_checkpoint_time = std::chrono::steady_clock::now();
-  const auto checkpoint = [&] {
+  bool checkpoint_due(std::uint64_t done) const {
+    if (config_.checkpoint_every > 0 && done % std::uint64_t(config_.checkpoint_every) == 0) return true;
+    return config_.checkpoint_minutes > 0.0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_time_).count() >=
+               60.0 * config_.checkpoint_minutes;
+  }
+
+  void checkpoint() {
     Checkpoint c;
     c.version = version_string;
-    c.command = command;
-    c.config_file = config.config_file.string();
-    c.config_json = to_json(config).dump();
-    c.sample_fingerprint = fingerprint;
-    const io::FilePrefix curves_written = curves->sync(), breaks_written = breaks->sync();
-    loop.curves_bytes = curves_written.bytes;
-    loop.curves_hash = curves_written.hash;
-    loop.breaks_bytes = breaks_written.bytes;
-    loop.breaks_hash = breaks_written.hash;
-    loop.max_energy_error = summary.max_energy_error;
-    loop.max_relative_energy_error = summary.max_relative_energy_error;
-    loop.wall_seconds = wall_now();
-    c.loop = loop;
-    c.engine = system.save_state();
-    last_checkpoint = save_checkpoint(folder, c, std::size_t(config.checkpoint_keep));
-    last_checkpoint_time = std::chrono::steady_clock::now();
-  };
-  const auto checkpoint_due = [&](std::uint64_t done) {
-    if (config.checkpoint_every > 0 && done % std::uint64_t(config.checkpoint_every) == 0) return true;
-    return config.checkpoint_minutes > 0.0 &&
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint_time).count() >=
-               60.0 * config.checkpoint_minutes;
-  };
+    c.command = command_;
+    c.config_file = config_.config_file.string();
+    c.config_json = to_json(config_).dump();
+    c.sample_fingerprint = sample_fingerprint(sample_);
+    const io::FilePrefix curves_written = curves_->sync(), breaks_written = breaks_->sync();
+    loop_.curves_bytes = curves_written.bytes;
+    loop_.curves_hash = curves_written.hash;
+    loop_.breaks_bytes = breaks_written.bytes;
+    loop_.breaks_hash = breaks_written.hash;
+    loop_.max_energy_error = summary_.max_energy_error;
+    loop_.max_relative_energy_error = summary_.max_relative_energy_error;
+    loop_.wall_seconds = wall_now();
+    c.loop = loop_;
+    c.engine = system_.save_state();
+    last_checkpoint_ = save_checkpoint(folder_, c, std::size_t(config_.checkpoint_keep));
+    last_checkpoint_time_ = std::chrono::steady_clock::now();
+  }
 
-  // run.log: a line a minute and one at the end (steps, rate, ETA, strain, breaks), for batch jobs.
-  Progress progress("run", double(plan.estimated_steps), folder / "run.log");
-  UnionFind sets;
-  LoadFreeWatch load_free(config.load_free_fraction, config.load_free_strain, loop.load_free);
-  bool stable = true;
-  int signal = 0;
-  try {
-    if (resume == nullptr) {
-      if (config.snapshot_interval > 0) snapshot();
-      stable = record();
-    }
-    while (stable) {
-      const std::uint64_t n = system.steps_done();
-      if (n >= std::uint64_t(config.max_steps)) {
-        summary.stop_reason = "max_steps";
-        break;
-      }
-      system.step(plan.dt, ramp.at(double(n + 1) * plan.dt));
-      if (const dem::StepMove& move = system.last_step_move(); !(move.fraction <= max_step_move)) {
-        instability = fmt::format("particle id {} moved {:.3g} of its radius in one step (more than {:g})",
-                                  sample.id[move.sample_index], move.fraction, max_step_move);
-        stable = false;
-        break;
-      }
-      load_free.add(system.force_top());
-      auto& events = system.break_events();
-      if (!events.empty()) {
-        for (const auto& ev : events)
-          breaks->row({double(ev.step), system.time(), strain_now(), double(sample.id[ev.i]),
-                       double(sample.id[ev.j]), ev.midpoint.x, ev.midpoint.y, ev.midpoint.z, ev.rest_length,
-                       ev.energy});
-        breaks->flush();
-        events.clear();
-      }
-      const std::uint64_t done = n + 1;
-      const double strain = strain_now();
-      if (done % std::uint64_t(config.output_interval) == 0 && !(stable = record())) break;
-      if (config.snapshot_interval > 0 && done % std::uint64_t(config.snapshot_interval) == 0) snapshot();
-      if (!loop.separated && done % std::uint64_t(config.separation_check_interval) == 0) {
-        const bool broken = system.intact_bonds() < system.bond_count();
-        if (separated(system, sets))
-          loop.separation_rule = "connectivity";
-        else if (load_free.check(strain, broken))
-          loop.separation_rule = "load_free";
-        loop.separated = !loop.separation_rule.empty();
-        loop.separation_strain = strain;
-      }
-      if (config.stop_at_separation && loop.separated &&
-          strain >= loop.separation_strain + config.extra_strain) {
-        summary.stop_reason = "separated";
-        break;
-      }
-      if (strain >= config.max_strain) {
-        summary.stop_reason = "max_strain";
-        break;
-      }
-      // Everything of this step is written: a checkpoint here resumes at the next one.
-      signal = pending_interrupt();
-      if (signal == 0 && stop_requested) signal = SIGINT;
-      if (signal != 0 || checkpoint_due(done)) {
-        loop.load_free = load_free.state();
-        checkpoint();
-      }
-      if (signal != 0) {
-        summary.stop_reason = "interrupted";
-        break;
-      }
-      progress.update_with(double(done), [&] {
-        return fmt::format("strain {:.3f} %, {} broken", strain, system.bond_count() - system.intact_bonds());
-      });
-    }
-    if (stable && signal == 0 && loop.last_recorded != system.steps_done()) stable = record();
-  } catch (const std::exception& e) {
-    // A write failed (a full disk): the checkpoints written so far are intact.
-    if (dynamic_cast<const RunError*>(&e) == nullptr &&
-        dynamic_cast<const std::filesystem::filesystem_error*>(&e) == nullptr)
-      throw;
-    const std::string next =
-        last_checkpoint.empty()
-            ? "no checkpoint was written yet: start the run again once there is space"
-            : fmt::format(
-                  "the last checkpoint {} is intact: make room, then continue with `rupture run --resume {}`",
-                  last_checkpoint.string(), folder.string());
+  // A failed write: run.json says so (if the disk still takes it) and the error names the last
+  // intact checkpoint.
+  [[noreturn]] void fail_on_write(const std::exception& e) {
+    const std::string next = last_checkpoint_.empty()
+                                 ? "no checkpoint was written yet: start the run again once there is space"
+                                 : fmt::format(
+                                       "the last checkpoint {} is intact: make room, then continue with "
+                                       "`rupture run --resume {}`",
+                                       last_checkpoint_.string(), folder_.string());
     const std::string message = fmt::format("{}; {}", e.what(), next);
-    report["status"] = "failed";
-    report["stop_reason"] = "write_failed";
-    report["error"] = message;
+    record_["status"] = "failed";
+    record_["stop_reason"] = "write_failed";
+    record_["error"] = message;
     try {
-      io::write_json_atomically(folder / "run.json", report);
+      io::write_json_atomically(folder_ / "run.json", record_);
     } catch (const RunError&) {  // the disk that refused the output may refuse this too
     }
     throw RunError(message);
   }
-  progress.finish(double(system.steps_done()),
-                  fmt::format("strain {:.3f} %, {} broken, stopped: {}", strain_now(),
-                              system.bond_count() - system.intact_bonds(),
-                              summary.stop_reason.empty() ? std::string(stable ? "interrupted" : "unstable")
-                                                          : summary.stop_reason));
 
-  summary.steps = system.steps_done();
-  summary.strain = strain_now();
-  summary.broken_bonds = system.bond_count() - system.intact_bonds();
-  summary.wall_seconds = wall_now();
-  summary.status = !stable ? "failed" : signal != 0 ? "interrupted" : "finished";
-  std::string failure;
-  if (!stable) {
-    summary.stop_reason = "unstable";
-    const bool too_large = plan.dt > plan.critical_dt;
+  // What an unstable run's error says: the step, what gave it away, the likely cause and a dt.
+  std::string describe_instability() const {
+    const bool too_large = plan_.dt > plan_.critical_dt;
     // The automatic dt when the given one is above the limit, else half the given one.
-    const double suggested = too_large ? config.dt_safety * plan.critical_dt : 0.5 * plan.dt;
+    const double suggested = too_large ? config_.dt_safety * plan_.critical_dt : 0.5 * plan_.dt;
     const std::string cause =
         too_large ? fmt::format(
                         "dt = {:.3g} s is too large for k_n = {:g} N/mm and the stiffest, lightest particle "
                         "(springs summing to {:.3g} N/mm on {:.3g} g: critical dt {:.3g} s)",
-                        plan.dt, config.bond_stiffness, plan.stiffest_spring_sum,
-                        units::mass_to_grams(plan.stiffest_mass), plan.critical_dt)
+                        plan_.dt, config_.bond_stiffness, plan_.stiffest_spring_sum,
+                        units::mass_to_grams(plan_.stiffest_mass), plan_.critical_dt)
                   : fmt::format(
                         "the ramp is too abrupt for b_d = {:g} (loading.ramp_steps = {} to {:g} mm/s), or "
                         "contacts {:g} times as stiff as the bonds outrun dt = {:.3g} s",
-                        config.break_distance, config.ramp_steps, config.speed,
-                        config.contact_stiffness_factor, plan.dt);
-    failure = fmt::format(
+                        config_.break_distance, config_.ramp_steps, config_.speed,
+                        config_.contact_stiffness_factor, plan_.dt);
+    return fmt::format(
         "unstable at step {} (t = {:.6g} s, strain {:.4g} %): {}; likely cause: {}; "
         "suggested dt = {:.3g} s: try time.dt = {:.3g}{}",
-        summary.steps, system.time(), summary.strain, instability, cause, suggested, suggested,
+        summary_.steps, system_.time(), summary_.strain, instability_, cause, suggested, suggested,
         too_large ? " or \"auto\"" : " or a longer loading.ramp_steps");
   }
-  const dem::StageTimes& t = system.stage_times();
-  report["status"] = summary.status;
-  report["stop_reason"] = summary.stop_reason;
-  if (!failure.empty()) report["error"] = failure;
-  if (signal != 0) {
-    summary.checkpoint = last_checkpoint;
-    summary.signal = signal;
-    report["checkpoint"] = last_checkpoint.string();
-    report["resume_with"] = fmt::format("rupture run --resume {}", folder.string());
+
+  // The summary and the closing run.json; a run that cannot go on loses its checkpoints. Returns
+  // the failure message of an unstable run ("" otherwise).
+  std::string close() {
+    summary_.steps = system_.steps_done();
+    summary_.strain = strain_now();
+    summary_.broken_bonds = broken_bonds();
+    summary_.wall_seconds = wall_now();
+    summary_.status = !stable_ ? "failed" : signal_ != 0 ? "interrupted" : "finished";
+    std::string failure;
+    if (!stable_) {
+      summary_.stop_reason = "unstable";
+      failure = describe_instability();
+    }
+    record_["status"] = summary_.status;
+    record_["stop_reason"] = summary_.stop_reason;
+    if (!failure.empty()) record_["error"] = failure;
+    if (signal_ != 0) {
+      summary_.checkpoint = last_checkpoint_;
+      summary_.signal = signal_;
+      record_["checkpoint"] = last_checkpoint_.string();
+      record_["resume_with"] = fmt::format("rupture run --resume {}", folder_.string());
+    }
+    add_results_to_record();
+    io::write_json_atomically(folder_ / "run.json", record_);
+    // A finished or unstable run has nothing to resume (the same config would blow up again):
+    // its checkpoints go, and the folder takes a new run.
+    if (signal_ == 0) {
+      std::error_code ignored;
+      std::filesystem::remove_all(folder_ / "checkpoints", ignored);
+    }
+    return failure;
   }
-  report["steps"] = summary.steps;
-  report["final_strain_percent"] = summary.strain;
-  report["separation_strain_percent"] =
-      loop.separated ? nlohmann::json(loop.separation_strain) : nlohmann::json(nullptr);
-  report["separation_rule"] = loop.separated ? nlohmann::json(loop.separation_rule) : nlohmann::json(nullptr);
-  report["broken_bonds"] = summary.broken_bonds;
-  report["monitor"] = config.monitor ? analysis::to_json(monitor.summary()) : nlohmann::json(nullptr);
-  if (config.monitor) report["monitor"]["units"] = {{"strain", "%"}, {"force", "N"}, {"energy", "mJ"}};
-  report["wall_s"] = summary.wall_seconds;
-  report["particle_steps_per_s"] =
-      double(summary.steps) * double(sample.size()) / std::max(summary.wall_seconds, 1e-9);
-  report["energy_balance"] = {{"max_abs_error_mJ", summary.max_energy_error},
-                              {"max_error_relative_to_work", summary.max_relative_energy_error},
-                              {"plate_work_mJ", system.plate_work()},
-                              {"initial_energy_mJ", initial_energy}};
-  report["stage_seconds"] = {{"neighbours", t.neighbours},
-                             {"integrate", t.integrate},
-                             {"forces", t.forces},
-                             {"plates", t.plates},
-                             {"breaks", t.breaks}};
-  report["neighbour_rebuilds"] = system.neighbour_rebuilds();
-  report["snapshots"] = loop.snapshots.size();
-  report["memory_bytes_per_particle"] =
-      double(system.memory_bytes()) / double(std::max<std::size_t>(1, sample.size()));
-  io::write_json_atomically(folder / "run.json", report);
-  // A finished or unstable run has nothing to resume (the same config would blow up again):
-  // its checkpoints go, and the folder takes a new run.
-  if (signal == 0) {
-    std::error_code ignored;
-    std::filesystem::remove_all(folder / "checkpoints", ignored);
+
+  void add_results_to_record() {
+    const dem::StageTimes& t = system_.stage_times();
+    record_["steps"] = summary_.steps;
+    record_["final_strain_percent"] = summary_.strain;
+    record_["separation_strain_percent"] =
+        loop_.separated ? nlohmann::json(loop_.separation_strain) : nlohmann::json(nullptr);
+    record_["separation_rule"] =
+        loop_.separated ? nlohmann::json(loop_.separation_rule) : nlohmann::json(nullptr);
+    record_["broken_bonds"] = summary_.broken_bonds;
+    record_["monitor"] = config_.monitor ? analysis::to_json(monitor_.summary()) : nlohmann::json(nullptr);
+    if (config_.monitor) record_["monitor"]["units"] = {{"strain", "%"}, {"force", "N"}, {"energy", "mJ"}};
+    record_["wall_s"] = summary_.wall_seconds;
+    record_["particle_steps_per_s"] =
+        double(summary_.steps) * double(sample_.size()) / std::max(summary_.wall_seconds, 1e-9);
+    record_["energy_balance"] = {{"max_abs_error_mJ", summary_.max_energy_error},
+                                 {"max_error_relative_to_work", summary_.max_relative_energy_error},
+                                 {"plate_work_mJ", system_.plate_work()},
+                                 {"initial_energy_mJ", initial_energy_}};
+    record_["stage_seconds"] = {{"neighbours", t.neighbours},
+                                {"integrate", t.integrate},
+                                {"forces", t.forces},
+                                {"plates", t.plates},
+                                {"breaks", t.breaks}};
+    record_["neighbour_rebuilds"] = system_.neighbour_rebuilds();
+    record_["snapshots"] = loop_.snapshots.size();
+    record_["memory_bytes_per_particle"] =
+        double(system_.memory_bytes()) / double(std::max<std::size_t>(1, sample_.size()));
   }
-  if (!stable) throw RunError(failure);
-  return summary;
+
+  // What the run was given.
+  const RunConfig& config_;
+  const Sample& sample_;
+  const std::filesystem::path folder_;
+  const std::string command_;  // the command that started the run
+  const RunOptions& options_;
+  ResumePoint* const resume_;  // null for a new run
+  const std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
+
+  // The model and what was worked out before the first step.
+  dem::System system_;
+  const RunPlan plan_;
+  const SpeedRamp ramp_;
+  const double l0_;            // mm, the initial plate separation
+  double initial_energy_ = 0;  // mJ, held by the sample before the first step
+  const std::filesystem::path curves_file_, breaks_file_;
+
+  // The folder and its files.
+  std::unique_ptr<io::FolderLock> lock_;
+  std::unique_ptr<io::CsvStream> curves_, breaks_;
+  nlohmann::json record_;                             // run.json
+  nlohmann::json resumes_ = nlohmann::json::array();  // earlier resumes and this one
+
+  // What the loop carries (a checkpoint saves loop_), and how it ended.
+  LoopState loop_;
+  analysis::Monitor monitor_;
+  UnionFind sets_;
+  RunSummary summary_;
+  double wall_before_ = 0.0;  // s spent before the resumed checkpoint
+  std::filesystem::path last_checkpoint_;
+  std::chrono::steady_clock::time_point last_checkpoint_time_ = std::chrono::steady_clock::now();
+  std::string instability_;      // what gave an instability away, naming the particle ("" while stable)
+  bool stop_requested_ = false;  // options.on_row said stop
+  bool stable_ = true;
+  int signal_ = 0;  // SIGINT/SIGTERM that interrupted the run, or on_row's stop (as SIGINT)
+};
+
+RunSummary execute(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,
+                   const std::string& command, const RunOptions& options, ResumePoint* resume) {
+  omp_set_num_threads(int(config.threads));
+  TensionRun run(config, sample, folder, command, options, resume);
+  return run.execute();
 }
 
 }  // namespace
