@@ -425,53 +425,63 @@ DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vecto
 
 }  // namespace
 
-AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks) {
-  AnalysisResult r;
-  r.source = curve.source;
-  r.strain_unit = curve.strain_unit;
-  r.force_unit = curve.force_unit;
-  r.energy_unit = curve.energy_unit;
-  r.delay_method = options.delay_method;
-  r.warnings = curve.warnings;
+namespace {
+
+// Keeps the first reason a curve is rejected for.
+void reject(AnalysisResult& r, std::string reason) {
+  if (r.rejection.empty()) r.rejection = std::move(reason);
+}
+
+// The curve on a uniform strain grid: the strains and the two curves on it.
+struct Grid {
+  UniformCurves curves;
+  std::vector<double> xs;
+  std::size_t size() const { return xs.size(); }
+  std::span<const double> force() const { return curves.y[0]; }
+  std::span<const double> energy() const { return curves.y[1]; }
+};
+
+// 0–1. One loading on a uniform grid. A strain that goes back is rejected, naming the rows (data
+// row numbers, 1-based): nullopt, the reason in r. Too few rows or distinct strains throw.
+std::optional<Grid> uniform_grid(const Curve& curve, const AnalysisOptions& options, AnalysisResult& r) {
   const std::size_t needed = minimum_rows(options);
   if (curve.strain.size() < needed) {
     throw InputError(curve.source,
                      fmt::format("{} data rows, the analysis needs at least {}", curve.strain.size(), needed),
                      "give a longer curve (or a weaker filter: --filter none)");
   }
-  // 0. One loading: a strain that goes back is rejected, naming the rows (data row numbers, 1-based).
   if (const auto back = first_strain_decrease(curve.strain)) {
     r.resample.input_rows = curve.strain.size();
     r.rejection = fmt::format(
         "the strain decreases from data row {} ({:.6g} {}) to row {} ({:.6g} {}): the curve unloads and "
-        "reloads; "
-        "analyse one monotone loading branch (e.g. rows 1-{})",
+        "reloads; analyse one monotone loading branch (e.g. rows 1-{})",
         *back, curve.strain[*back - 1], curve.strain_unit, *back + 1, curve.strain[*back], curve.strain_unit,
         *back);
-    return r;
+    return std::nullopt;
   }
-  // 1. Uniform grid.
   const std::span<const double> columns[] = {curve.force, curve.energy};
-  UniformCurves grid = resample_uniform(curve.strain, columns, r.resample);
-  average_blocks(grid, options.max_samples, r.resample);
-  if (grid.size() < needed) {
-    throw InputError(curve.source,
-                     fmt::format("{} distinct strains, the analysis needs at least {}", grid.size(), needed),
-                     "give a curve with more distinct strain values");
+  Grid g{resample_uniform(curve.strain, columns, r.resample), {}};
+  average_blocks(g.curves, options.max_samples, r.resample);
+  if (g.curves.size() < needed) {
+    throw InputError(
+        curve.source,
+        fmt::format("{} distinct strains, the analysis needs at least {}", g.curves.size(), needed),
+        "give a curve with more distinct strain values");
   }
-  const std::size_t n = grid.size();
-  r.x0 = grid.x0;
-  r.step = grid.step;
-  std::vector<double> xs(n);
-  for (std::size_t i = 0; i < n; ++i) xs[i] = grid.x(i);
-  const auto& force = grid.y[0];
-  const auto& energy = grid.y[1];
+  g.xs.resize(g.curves.size());
+  for (std::size_t i = 0; i < g.xs.size(); ++i) g.xs[i] = g.curves.x(i);
+  r.x0 = g.curves.x0;
+  r.step = g.curves.step;
+  return g;
+}
 
-  // 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
-  // the noise (finite bundles: every break is a step), the discrepancy principle runs on the
-  // increments, which are then the white part: on the curves themselves it would take the walk's
-  // low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed.
-  const auto whole_curve_noise = estimate_noise(force, energy, 0, n - 1);
+// 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
+// the noise (finite bundles: every break is a step), the discrepancy principle runs on the
+// increments, which are then the white part: on the curves themselves it would take the walk's
+// low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed.
+void choose_filter(const Grid& g, FilterSettings& filter, AnalysisResult& r) {
+  const std::size_t n = g.size();
+  const auto whole_curve_noise = estimate_noise(g.force(), g.energy(), 0, n - 1);
   const auto walk_dominated = [](const NoiseComponents& c) {
     return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
   };
@@ -480,53 +490,49 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   if (r.filter_on_increments) {
     std::vector<double> force_steps(n - 1), energy_steps(n - 1);
     for (std::size_t i = 0; i + 1 < n; ++i) {
-      force_steps[i] = force[i + 1] - force[i];
-      energy_steps[i] = energy[i + 1] - energy[i];
+      force_steps[i] = g.force()[i + 1] - g.force()[i];
+      energy_steps[i] = g.energy()[i + 1] - g.energy()[i];
     }
     const std::span<const double> steps[] = {force_steps, energy_steps};
-    choose_shared_filter(options.filter, steps);
+    choose_shared_filter(filter, steps);
   } else {
-    const std::span<const double> raw[] = {force, energy};
-    choose_shared_filter(options.filter, raw);
+    const std::span<const double> raw[] = {g.force(), g.energy()};
+    choose_shared_filter(filter, raw);
   }
-  r.filter = options.filter;
-  r.force_noise = noise_from_differences(force);
-  r.energy_noise = noise_from_differences(energy);
+  r.filter = filter;
+  r.force_noise = noise_from_differences(g.force());
+  r.energy_noise = noise_from_differences(g.energy());
+}
 
-  // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
-  const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, n),
-                          options.peak, options.acceptance.collapse_fraction};
-  r.derivative_window = search.derivative_window;
+std::string rate_unit_of(const AnalysisResult& r) { return per_strain(r.energy_unit, r.strain_unit); }
 
-  // 4. The maxima, inside the loading phase.
-  const auto measurement = measure_peaks(xs, force, energy, search);
-  r.filtered_force = measurement.filtered_force;
-  r.filtered_energy = measurement.filtered_energy;
-  r.energy_rate = measurement.energy_rate;
-  r.force_peak = measurement.force;
-  r.energy_peak = measurement.energy;
-  r.rate_peak = measurement.rate;
-  r.loading_phase_end = xs[measurement.phase_end];
-  const std::string rate_unit = per_strain(curve.energy_unit, curve.strain_unit);
-  const std::size_t phase = measurement.phase_end + 1;
-  // Values without errors for now: the bootstrap (step 6) supplies them where all three peaks are found.
+// 4. The maxima found inside the loading phase, as values without errors: the bootstrap (step 6)
+// supplies the errors where all three peaks are found.
+void record_peaks(const PeakMeasurement& m, const Grid& g, AnalysisResult& r) {
+  r.filtered_force = m.filtered_force;
+  r.filtered_energy = m.filtered_energy;
+  r.energy_rate = m.energy_rate;
+  r.force_peak = m.force;
+  r.energy_peak = m.energy;
+  r.rate_peak = m.rate;
+  r.loading_phase_end = g.xs[m.phase_end];
   if (r.force_peak->found) {
-    r.x_c = measured(r.force_peak->x, 0.0, curve.strain_unit);
-    r.F_c = measured(r.force_peak->value, 0.0, curve.force_unit);
+    r.x_c = measured(r.force_peak->x, 0.0, r.strain_unit);
+    r.F_c = measured(r.force_peak->value, 0.0, r.force_unit);
   }
   if (r.energy_peak->found) {
-    r.x_m = measured(r.energy_peak->x, 0.0, curve.strain_unit);
-    r.E_max = measured(r.energy_peak->value, 0.0, curve.energy_unit);
+    r.x_m = measured(r.energy_peak->x, 0.0, r.strain_unit);
+    r.E_max = measured(r.energy_peak->value, 0.0, r.energy_unit);
   }
   if (r.rate_peak->found) {
-    r.x_p = measured(r.rate_peak->x, 0.0, curve.strain_unit);
-    r.Erate_max = measured(r.rate_peak->value, 0.0, rate_unit);
+    r.x_p = measured(r.rate_peak->x, 0.0, r.strain_unit);
+    r.Erate_max = measured(r.rate_peak->value, 0.0, rate_unit_of(r));
   }
+}
 
-  // 5. Acceptance of the peaks (before spending time on the uncertainty).
-  const auto reject = [&](std::string reason) {
-    if (r.rejection.empty()) r.rejection = std::move(reason);
-  };
+// 5. Acceptance of the peaks (before spending time on the uncertainty). `phase`: the samples of
+// the loading phase.
+void check_peaks(const Grid& g, std::size_t phase, const AcceptanceRules& rules, AnalysisResult& r) {
   const std::size_t force_top = r.force_peak->index;
   const double F_top = r.filtered_force[force_top];
   // Competing maxima are sought over the whole curve (a second loading after a collapse makes x_c
@@ -537,150 +543,188 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       significant_maxima(std::span<const double>(r.filtered_force).first(phase), 0.05 * std::abs(F_top))
           .size());
   if (!r.force_peak->found) {
-    reject("force peak: " + r.force_peak->problem);
-  } else if (prominence_of_maximum(r.filtered_force, force_top) <
-             options.acceptance.min_prominence * std::abs(F_top)) {
-    reject(fmt::format(
-        "force peak not pronounced: it rises less than {:g} % of F_c above the curve on either side",
-        100.0 * options.acceptance.min_prominence));
+    reject(r, "force peak: " + r.force_peak->problem);
+  } else if (prominence_of_maximum(r.filtered_force, force_top) < rules.min_prominence * std::abs(F_top)) {
+    reject(r,
+           fmt::format(
+               "force peak not pronounced: it rises less than {:g} % of F_c above the curve on either side",
+               100.0 * rules.min_prominence));
   } else {
     for (std::size_t k : maxima) {
-      if (k != force_top && r.filtered_force[k] >= options.acceptance.competing_maximum * F_top) {
-        reject(fmt::format(
-            "several force maxima of similar height (x = {:.6g} and x = {:.6g} {}): x_c is ambiguous",
-            xs[force_top], xs[k], curve.strain_unit));
+      if (k != force_top && r.filtered_force[k] >= rules.competing_maximum * F_top) {
+        reject(r,
+               fmt::format(
+                   "several force maxima of similar height (x = {:.6g} and x = {:.6g} {}): x_c is ambiguous",
+                   g.xs[force_top], g.xs[k], r.strain_unit));
         break;
       }
     }
   }
   const std::span<const double> phase_rate = std::span<const double>(r.energy_rate).first(phase);
   if (!r.rate_peak->found) {
-    reject("energy-rate peak: " + r.rate_peak->problem);
+    reject(r, "energy-rate peak: " + r.rate_peak->problem);
   } else if (prominence_of_maximum(phase_rate, r.rate_peak->index) <
-             options.acceptance.min_prominence * std::abs(r.energy_rate[r.rate_peak->index])) {
-    reject(fmt::format(
-        "energy-rate peak not pronounced: it rises less than {:g} % of ℰ_max above the curve on either side",
-        100.0 * options.acceptance.min_prominence));
+             rules.min_prominence * std::abs(r.energy_rate[r.rate_peak->index])) {
+    reject(r, fmt::format("energy-rate peak not pronounced: it rises less than {:g} % of ℰ_max above the "
+                          "curve on either side",
+                          100.0 * rules.min_prominence));
   }
+}
 
-  // 6. Uncertainty of every number: a parametric bootstrap of the measurement (bootstrap.hpp) over
-  // the span of the three fits, padded.
-  const bool have_energy_peak = r.energy_peak->found;
-  const auto run = bootstrap_measurement(xs, force, energy, measurement, search, options.uncertainty);
-  if (run) {
-    const auto* values = &run->values;
-    const auto& boot = run->boot;
-    r.noise_model = run->noise;
-    r.bootstrap_window_low = xs[run->low];
-    r.bootstrap_window_high = xs[run->high];
-    r.bootstrap_replicates = boot.attempted;
-    r.bootstrap_failed = boot.failed;
-    const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
-      return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
-    };
-    const auto shift = smoothing_shift(xs, force, energy, search, *values, options.derivative_window);
-    const auto x_c =
-        add_systematic(interval(values->x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c);
-    const auto F_c = interval(values->F_c, [](const PeakValues& v) { return v.F_c; });
-    const auto x_p =
-        add_systematic(interval(values->x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p);
-    const auto Erate = interval(values->Erate_max, [](const PeakValues& v) { return v.Erate_max; });
-    const auto x_m = interval(values->x_m, [](const PeakValues& v) { return v.x_m; });
-    const auto E_max = interval(values->E_max, [](const PeakValues& v) { return v.E_max; });
-    r.x_c = measured(x_c.estimate, x_c.sd, curve.strain_unit);
-    r.F_c = measured(F_c.estimate, F_c.sd, curve.force_unit);
-    r.x_p = measured(x_p.estimate, x_p.sd, curve.strain_unit);
-    r.Erate_max = measured(Erate.estimate, Erate.sd, rate_unit);
-    if (have_energy_peak) {
-      r.x_m = measured(x_m.estimate, x_m.sd, curve.strain_unit);
-      r.E_max = measured(E_max.estimate, E_max.sd, curve.energy_unit);
-    }
-    const auto direct =
-        add_systematic(interval(values->x_c - values->x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
-                       shift.x_c - shift.x_p);
-    r.delta_x_direct = measured(direct.estimate, direct.sd, curve.strain_unit);
+// 6. Every number's uncertainty from the bootstrap's replicates, widened by the smoothing shift
+// for the strains. Returns δ_x of the fitted maxima with its interval.
+BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const PeakSearch& search,
+                                   int requested_derivative_window, AnalysisResult& r) {
+  const PeakValues& values = run.values;
+  const auto& boot = run.boot;
+  r.noise_model = run.noise;
+  r.bootstrap_window_low = g.xs[run.low];
+  r.bootstrap_window_high = g.xs[run.high];
+  r.bootstrap_replicates = boot.attempted;
+  r.bootstrap_failed = boot.failed;
+  const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
+    return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
+  };
+  const auto shift =
+      smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
+  const auto x_c = add_systematic(interval(values.x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c);
+  const auto F_c = interval(values.F_c, [](const PeakValues& v) { return v.F_c; });
+  const auto x_p = add_systematic(interval(values.x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p);
+  const auto Erate = interval(values.Erate_max, [](const PeakValues& v) { return v.Erate_max; });
+  r.x_c = measured(x_c.estimate, x_c.sd, r.strain_unit);
+  r.F_c = measured(F_c.estimate, F_c.sd, r.force_unit);
+  r.x_p = measured(x_p.estimate, x_p.sd, r.strain_unit);
+  r.Erate_max = measured(Erate.estimate, Erate.sd, rate_unit_of(r));
+  if (r.energy_peak->found) {
+    const auto x_m = interval(values.x_m, [](const PeakValues& v) { return v.x_m; });
+    const auto E_max = interval(values.E_max, [](const PeakValues& v) { return v.E_max; });
+    r.x_m = measured(x_m.estimate, x_m.sd, r.strain_unit);
+    r.E_max = measured(E_max.estimate, E_max.sd, r.energy_unit);
+    const auto ratio = interval(energy_ratio_of(values), energy_ratio_of);  // bias-corrected like the rest
+    r.A_r = measured(ratio.estimate, ratio.sd, "1");
+  }
+  const auto direct =
+      add_systematic(interval(values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
+                     shift.x_c - shift.x_p);
+  r.delta_x_direct = measured(direct.estimate, direct.sd, r.strain_unit);
+  return direct;
+}
 
-    // 7. δ_x by the chosen method, then Γ, A_r, α.
-    DelayPosterior delay;
-    if (options.delay_method == DelayMethod::fitted_maxima) {
-      delay = delay_from_replicates(
-          direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }));
-      r.delta_x_bias = direct.bias;
-    } else {
-      delay =
-          infer_delay(grid.x0, grid.step, force, r.filtered_force, r.energy_rate, force_top, options.delay);
-      if (!(delay.scale_at_map > 0.0)) {
-        reject(fmt::format(
-            "no positive scale c fits F ≈ c·ℰ(x − δ) (best c = {:.3g}): the force peak does not match the "
-            "energy-rate peak",
-            delay.scale_at_map));
-      }
-      if (delay.at_prior_bound) {
-        reject(
-            "δ_x undetermined: the posterior reaches the end of the admissible shifts (the data around the "
-            "peaks is too short)");
-      }
+// 7. δ_x by the chosen method, then Γ and α, and the acceptance of the uncertainty.
+void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInterval& direct,
+                    const AnalysisOptions& options, AnalysisResult& r) {
+  const auto& boot = run.boot;
+  DelayPosterior delay;
+  if (options.delay_method == DelayMethod::fitted_maxima) {
+    delay = delay_from_replicates(
+        direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }));
+    r.delta_x_bias = direct.bias;
+  } else {
+    delay = infer_delay(g.curves.x0, g.curves.step, g.force(), r.filtered_force, r.energy_rate,
+                        r.force_peak->index, options.delay);
+    if (!(delay.scale_at_map > 0.0)) {
+      reject(r,
+             fmt::format(
+                 "no positive scale c fits F ≈ c·ℰ(x − δ) (best c = {:.3g}): the force peak does not match "
+                 "the energy-rate peak",
+                 delay.scale_at_map));
     }
-    r.delay = delay;
-    r.delta_x = measured(delay.mean, delay.sd, curve.strain_unit);
-    const double delta = delay.mean;
-    if (delta != 0.0 && have_energy_peak) {
-      r.Gamma =
-          measured((r.x_m->value - r.x_c->value) / delta, robust_spread(boot.replicates, gamma_of), "1");
-    }
-    if (have_energy_peak) {
-      const auto ratio =
-          interval(energy_ratio_of(*values), energy_ratio_of);  // bias-corrected like every other number
-      r.A_r = measured(ratio.estimate, ratio.sd, "1");
-    }
-    r.alpha = alpha_estimate(delay, *r.x_p, r.Gamma, r.A_r);
-    if (boot.failed > options.acceptance.max_failed_replicates * boot.attempted) {
-      reject(fmt::format(
-          "the peaks are unstable under the curve's own noise: in {} of {} noise replicates a maximum "
-          "was not found",
-          boot.failed, boot.attempted));
-    } else if (delay.sd > options.acceptance.max_relative_delay_sd * std::abs(r.x_c->value - grid.x0)) {
-      reject(fmt::format("δ_x too uncertain: sd {:.3g} {} exceeds {:g} of x_c", delay.sd, curve.strain_unit,
-                         options.acceptance.max_relative_delay_sd));
+    if (delay.at_prior_bound) {
+      reject(r,
+             "δ_x undetermined: the posterior reaches the end of the admissible shifts (the data around the "
+             "peaks is too short)");
     }
   }
-
-  // 8. Mechanism features and class.
-  if (r.x_c) {
-    const double x_c = r.x_c->value;
-    auto& f = r.features;
-    if (curve.strain_unit == "%") f.critical_strain_percent = x_c;
-    if (curve.strain_unit == "1") f.critical_strain_percent = 100.0 * x_c;
-    if (r.energy_peak->found) {
-      const std::size_t top = r.energy_peak->index;
-      const double level = 0.9 * r.filtered_energy[top];
-      std::size_t lo = top, hi = top;
-      while (lo > 0 && r.filtered_energy[lo - 1] >= level) --lo;
-      while (hi + 1 < n && r.filtered_energy[hi + 1] >= level) ++hi;
-      f.energy_peak_width = (xs[hi] - xs[lo]) / x_c;
-    }
-    f.force_maxima = r.force_maxima;
-    for (std::size_t i = force_top; i < n; ++i) {
-      if (r.filtered_force[i] < 0.5 * F_top) {
-        f.post_peak_decay = (xs[i] - x_c) / x_c;
-        break;
-      }
-    }
-    if (F_top > 0.0)
-      f.loading_undulation = deepest_dip(std::span<const double>(r.filtered_force).first(force_top)) / F_top;
-    // Breaks after the loading phase (fragments ringing, the extra pull after separation) say
-    // nothing of how the sample failed.
-    const BreakLog loading_breaks = breaks_until(breaks, r.loading_phase_end);
-    f.break_spread = break_spread(loading_breaks.strain, x_c);
-    f.crack = crack_features(loading_breaks, x_c);
-    if (r.Gamma) f.gamma = r.Gamma->value;
-    r.mechanism = classify(f, options.mechanism);
-    // Ductile-like: x_c cannot be identified (paper section 5.2), so the curve is left out.
-    // It is the first thing said of such a curve, whatever else failed.
-    if (r.mechanism->mechanism == Mechanism::ductile)
-      r.rejection = "ductile-like breaking, x_c not identifiable: " + r.mechanism->reason +
-                    (r.rejection.empty() ? "" : "; also: " + r.rejection);
+  r.delay = delay;
+  r.delta_x = measured(delay.mean, delay.sd, r.strain_unit);
+  if (delay.mean != 0.0 && r.energy_peak->found) {
+    r.Gamma =
+        measured((r.x_m->value - r.x_c->value) / delay.mean, robust_spread(boot.replicates, gamma_of), "1");
   }
+  r.alpha = alpha_estimate(delay, *r.x_p, r.Gamma, r.A_r);
+  const AcceptanceRules& rules = options.acceptance;
+  if (boot.failed > rules.max_failed_replicates * boot.attempted) {
+    reject(r,
+           fmt::format(
+               "the peaks are unstable under the curve's own noise: in {} of {} noise replicates a maximum "
+               "was not found",
+               boot.failed, boot.attempted));
+  } else if (delay.sd > rules.max_relative_delay_sd * std::abs(r.x_c->value - g.curves.x0)) {
+    reject(r, fmt::format("δ_x too uncertain: sd {:.3g} {} exceeds {:g} of x_c", delay.sd, r.strain_unit,
+                          rules.max_relative_delay_sd));
+  }
+}
+
+// 8. Mechanism features and class (where x_c was found).
+void classify_mechanism(const Grid& g, const BreakLog& breaks, const MechanismRules& rules,
+                        AnalysisResult& r) {
+  const std::size_t n = g.size();
+  const double x_c = r.x_c->value;
+  const std::size_t force_top = r.force_peak->index;
+  const double F_top = r.filtered_force[force_top];
+  auto& f = r.features;
+  if (r.strain_unit == "%") f.critical_strain_percent = x_c;
+  if (r.strain_unit == "1") f.critical_strain_percent = 100.0 * x_c;
+  if (r.energy_peak->found) {
+    const std::size_t top = r.energy_peak->index;
+    const double level = 0.9 * r.filtered_energy[top];
+    std::size_t lo = top, hi = top;
+    while (lo > 0 && r.filtered_energy[lo - 1] >= level) --lo;
+    while (hi + 1 < n && r.filtered_energy[hi + 1] >= level) ++hi;
+    f.energy_peak_width = (g.xs[hi] - g.xs[lo]) / x_c;
+  }
+  f.force_maxima = r.force_maxima;
+  for (std::size_t i = force_top; i < n; ++i) {
+    if (r.filtered_force[i] < 0.5 * F_top) {
+      f.post_peak_decay = (g.xs[i] - x_c) / x_c;
+      break;
+    }
+  }
+  if (F_top > 0.0)
+    f.loading_undulation = deepest_dip(std::span<const double>(r.filtered_force).first(force_top)) / F_top;
+  // Breaks after the loading phase (fragments ringing, the extra pull after separation) say
+  // nothing of how the sample failed.
+  const BreakLog loading_breaks = breaks_until(breaks, r.loading_phase_end);
+  f.break_spread = break_spread(loading_breaks.strain, x_c);
+  f.crack = crack_features(loading_breaks, x_c);
+  if (r.Gamma) f.gamma = r.Gamma->value;
+  r.mechanism = classify(f, rules);
+  // Ductile-like: x_c cannot be identified (paper section 5.2), so the curve is left out.
+  // It is the first thing said of such a curve, whatever else failed.
+  if (r.mechanism->mechanism == Mechanism::ductile)
+    r.rejection = "ductile-like breaking, x_c not identifiable: " + r.mechanism->reason +
+                  (r.rejection.empty() ? "" : "; also: " + r.rejection);
+}
+
+}  // namespace
+
+AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks) {
+  AnalysisResult r;
+  r.source = curve.source;
+  r.strain_unit = curve.strain_unit;
+  r.force_unit = curve.force_unit;
+  r.energy_unit = curve.energy_unit;
+  r.delay_method = options.delay_method;
+  r.warnings = curve.warnings;
+  const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
+  if (!grid) return r;
+  const Grid& g = *grid;
+  choose_filter(g, options.filter, r);  // 2
+  // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
+  const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, g.size()),
+                          options.peak, options.acceptance.collapse_fraction};
+  r.derivative_window = search.derivative_window;
+  const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
+  record_peaks(measurement, g, r);
+  check_peaks(g, measurement.phase_end + 1, options.acceptance, r);  // 5
+  // 6–7. A parametric bootstrap of the measurement (bootstrap.hpp) over the span of the three fits,
+  // padded, gives every number's uncertainty and δ_x's.
+  if (const auto run =
+          bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, options.uncertainty)) {
+    const auto direct = record_intervals(g, *run, search, options.derivative_window, r);
+    estimate_delay(g, *run, direct, options, r);
+  }
+  if (r.x_c) classify_mechanism(g, breaks, options.mechanism, r);  // 8
   r.accepted = r.rejection.empty();
   return r;
 }
