@@ -35,11 +35,9 @@ std::optional<std::string> prefix_mismatch(const std::filesystem::path& path, co
   return std::nullopt;
 }
 
-CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::string>& comments,
-                     const std::vector<std::string>& header)
+CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::string>& header)
     : path_(path), file_(std::fopen(path.c_str(), "wb"), &std::fclose) {
   if (!file_) fail();
-  for (const auto& c : comments) put("# " + c + "\n");
   put(format_csv_header(header));
   flush();
 }

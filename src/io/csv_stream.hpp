@@ -29,9 +29,8 @@ std::optional<std::string> prefix_mismatch(const std::filesystem::path& path, co
 
 class CsvStream {
  public:
-  // A new file with its '#' comment lines and header.
-  CsvStream(const std::filesystem::path& path, const std::vector<std::string>& comments,
-            const std::vector<std::string>& header);
+  // A new file with its header and no comment lines (so that any CSV reader takes it as it is).
+  CsvStream(const std::filesystem::path& path, const std::vector<std::string>& header);
   // The file of an earlier run, cut back to `prefix` (the caller checked it with prefix_mismatch)
   // and appended to.
   CsvStream(const std::filesystem::path& path, const FilePrefix& prefix);

@@ -57,6 +57,13 @@ const std::vector<std::string> curve_header = {"time[s]",
                                                "intact_bonds[1]",
                                                "broken_bonds[1]",
                                                "contacts[1]"};
+// What curves.csv's and breaks.csv's columns mean beyond their names and units (run.json "columns").
+const nlohmann::json column_definitions = {
+    {"strain", "plate displacement / initial plate separation * 100 %"},
+    {"force_top", "force on the moving (top) plate, positive in tension"},
+    {"force_bottom", "force on the fixed (bottom) plate, positive in tension"},
+    {"x, y, z", "midpoint of the broken bond"},
+    {"particle_a, particle_b", "ids of the broken bond's particles, as in the sample"}};
 const std::vector<std::string> break_header = {"step[1]",         "time[s]",   "strain[%]", "particle_a[1]",
                                                "particle_b[1]",   "x[mm]",     "y[mm]",     "z[mm]",
                                                "rest_length[mm]", "energy[mJ]"};
@@ -305,6 +312,7 @@ class TensionRun {
                {"sample", to_json(compute_stats(sample_))},
                {"plan", to_json(plan_)},
                {"threads", config_.threads},
+               {"columns", column_definitions},
                {"status", "running"}};
     if (!resumes_.empty()) record_["resumes"] = resumes_;
     try {
@@ -315,14 +323,11 @@ class TensionRun {
     }
   }
 
-  // The header names the command that started the run; a resume keeps it, so the files of an
-  // interrupted run are byte for byte those of an uninterrupted one.
+  // The files hold the header and the rows only, so that any CSV reader takes them without
+  // options; what wrote them and what the columns mean is in run.json.
   void open_new_files() {
-    const std::vector<std::string> comments = {
-        fmt::format("rupture {} run: {}", version_string, command_),
-        "strain = plate displacement / initial plate separation * 100 %; forces positive in tension"};
-    curves_ = std::make_unique<io::CsvStream>(curves_file_, comments, curve_header);
-    breaks_ = std::make_unique<io::CsvStream>(breaks_file_, comments, break_header);
+    curves_ = std::make_unique<io::CsvStream>(curves_file_, curve_header);
+    breaks_ = std::make_unique<io::CsvStream>(breaks_file_, break_header);
   }
 
   void step_to_a_stop() {

@@ -378,7 +378,8 @@ TEST(RunFolder, AnEndedRunIsReplacedOnlyWithOverwriteAndOtherFilesNever) {
   const Ended replaced = run_to_end(cwd, run_args({"--overwrite"}));
   ASSERT_EQ(replaced.exit_code, 0) << replaced.err;
   EXPECT_EQ(slurp(folder / "notes.txt"), "my own notes\n") << "--overwrite removes only rupture's outputs";
-  EXPECT_THAT(slurp(folder / "curves.csv"), HasSubstr(" --overwrite\n"));
+  EXPECT_THAT(nlohmann::json::parse(slurp(folder / "run.json"))["command"].get<std::string>(),
+              HasSubstr(" --overwrite"));
 
   const fs::path foreign = cwd / "foreign";
   fs::create_directories(foreign);
@@ -539,8 +540,8 @@ TEST(RunFolder, ARefusedResumeChangesNothing) {
          io::write_file_atomically(folder / "curves.csv", text);
        },
        "curves.csv: its first "},
-      {"breaks.csv cut short", [](const fs::path& folder) { fs::resize_file(folder / "breaks.csv", 100); },
-       "breaks.csv: holds 100 bytes, fewer than the "},
+      {"breaks.csv cut short", [](const fs::path& folder) { fs::resize_file(folder / "breaks.csv", 50); },
+       "breaks.csv: holds 50 bytes, fewer than the "},
       {"breaks_bytes = 1", rewrite_checkpoint([](Checkpoint& c) { c.loop.breaks_bytes = 1; }),
        "breaks.csv: its first 1 bytes are not those its checkpoint recorded"},
       {"curves_bytes shortened by a row",

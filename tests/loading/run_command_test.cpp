@@ -103,6 +103,10 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   EXPECT_LT(report["energy_balance"]["max_error_relative_to_work"].get<double>(), 1e-2);
   const auto curves = io::read_csv(dir / "out" / "curves.csv");
   EXPECT_EQ(curves.header.size(), 15u);
+  // Header first, no comment lines: what wrote the tables and what the strain means is in run.json.
+  EXPECT_EQ(slurp(dir / "out" / "curves.csv").rfind("time[s],step[1],strain[%],", 0), 0u);
+  EXPECT_EQ(slurp(dir / "out" / "breaks.csv").rfind("step[1],time[s],strain[%],", 0), 0u);
+  EXPECT_THAT(report["columns"]["strain"].get<std::string>(), HasSubstr("initial plate separation"));
   EXPECT_TRUE(curves.find("force_top").has_value() && curves.find("elastic_energy").has_value());
   const auto breaks = io::read_csv(dir / "out" / "breaks.csv");
   EXPECT_GE(breaks.rows(), 8u) << "at least one bond per column";
