@@ -1,4 +1,4 @@
-// cli/plot_command: `rupture plot INPUT [--out FOLDER] [--format png|svg|both] [--snapshots-at X,...]` —
+// cli/plot_command: `rupture plot INPUT [--out FOLDER] [--format png,svg,pdf|all] [--snapshots-at X,...]` —
 // the paper's figures from a run folder, an FBM curve CSV or a scan folder, via gnuplot (src/figures).
 // Exit 0 drawn, 2 bad input, 1 gnuplot missing or complaining.
 #include <fmt/format.h>
@@ -15,13 +15,13 @@ namespace rupture::cli {
 
 void add_plot_command(CLI::App& app, int& /*exit_code*/) {
   struct PlotArguments {
-    std::string input, out, format = "both";
+    std::string input, out, format = "all";
     std::vector<double> snapshot_strains;
   };
   auto options = std::make_shared<PlotArguments>();
-  auto* command = app.add_subcommand(
-      "plot",
-      "Draw the paper's figures (PNG/SVG) of a run folder, an FBM curve CSV or a scan folder with gnuplot");
+  auto* command = app.add_subcommand("plot",
+                                     "Draw the paper's figures (PNG, SVG, PDF) of a run folder, an FBM curve "
+                                     "CSV or a scan folder with gnuplot");
   command
       ->add_option(
           "input", options->input,
@@ -30,9 +30,9 @@ void add_plot_command(CLI::App& app, int& /*exit_code*/) {
       ->required();
   command->add_option(
       "-o,--out", options->out,
-      "Folder for NAME.gp, NAME.dat, NAME.png, NAME.svg (default: figures/ beside the input)");
-  command->add_option("--format", options->format, "png, svg or both")
-      ->check(CLI::IsMember({"png", "svg", "both"}));
+      "Folder for NAME.gp, NAME.dat, NAME.png, NAME.svg, NAME.pdf (default: figures/ beside the input)");
+  command->add_option("--format", options->format,
+                      "Pictures to draw: png, svg and/or pdf, comma-separated, or all (both = png,svg)");
   command
       ->add_option(
           "--snapshots-at", options->snapshot_strains,
@@ -43,7 +43,7 @@ void add_plot_command(CLI::App& app, int& /*exit_code*/) {
     const std::filesystem::path out =
         options->out.empty() ? figures::default_out(input) : std::filesystem::path(options->out);
     figures::PlotOptions plot_options;
-    plot_options.format = figures::parse_format(options->format);
+    plot_options.formats = figures::parse_formats(options->format);
     plot_options.snapshot_strains = options->snapshot_strains;
     for (const auto& drawn : figures::plot(input, out, plot_options)) {
       for (const auto& file : drawn.files) fmt::print("wrote {}\n", file.string());

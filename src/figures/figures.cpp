@@ -382,7 +382,7 @@ std::vector<Drawn> plot(const fs::path& input, const fs::path& out, const PlotOp
   if (error) throw RunError(fmt::format("cannot create {}: {}", out.string(), error.message()));
   std::vector<Drawn> drawn;
   for (const auto& figure : figures)
-    drawn.push_back({figure.name, figure.caption, draw(figure, out, options.format)});
+    drawn.push_back({figure.name, figure.caption, draw(figure, out, options.formats)});
   return drawn;
 }
 

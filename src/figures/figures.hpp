@@ -13,7 +13,7 @@
 namespace rupture::figures {
 
 struct PlotOptions {
-  Format format = Format::both;
+  Formats formats;
   // Strains [%] at which to draw the bond snapshots (the nearest recorded snapshot to each);
   // empty: the snapshots nearest x_p and x_c from analysis.json and the last one.
   std::vector<double> snapshot_strains;

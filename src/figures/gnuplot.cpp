@@ -127,11 +127,26 @@ void append_panel(std::string& gp, const Panel& panel, const std::string& data_f
 
 }  // namespace
 
-Format parse_format(const std::string& text) {
-  if (text == "png") return Format::png;
-  if (text == "svg") return Format::svg;
-  if (text == "both") return Format::both;
-  throw InputError("--format", fmt::format("unknown format '{}'", text), "use png, svg or both");
+Formats parse_formats(const std::string& text) {
+  if (text == "all") return {};
+  if (text == "both") return {.png = true, .svg = true, .pdf = false};
+  Formats formats{.png = false, .svg = false, .pdf = false};
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, end - start);
+    if (name == "png")
+      formats.png = true;
+    else if (name == "svg")
+      formats.svg = true;
+    else if (name == "pdf")
+      formats.pdf = true;
+    else
+      throw InputError("--format", fmt::format("unknown format '{}'", name),
+                       "give png, svg and/or pdf, comma-separated, or all");
+    if (end == text.size()) return formats;
+    start = end + 1;
+  }
 }
 
 std::string data_text(const Figure& figure) {
@@ -151,12 +166,16 @@ std::string data_text(const Figure& figure) {
   return text;
 }
 
-std::string script_text(const Figure& figure, Format format) {
+std::string script_text(const Figure& figure, Formats formats) {
+  std::string listed;
+  for (const auto& [wanted, name] :
+       {std::pair{formats.png, "png"}, {formats.svg, "svg"}, {formats.pdf, "pdf"}})
+    if (wanted) listed += (listed.empty() ? "" : " ") + std::string(name);
   const std::string data_file = figure.name + ".dat";
   std::string gp;
   for (const auto& line : figure.provenance) gp += "# " + line + "\n";
   gp += fmt::format(
-      "# Draws {0}.png and/or {0}.svg from {1}. Rerun in this folder with: gnuplot {0}.gp\n"
+      "# Draws {0}.png, {0}.svg and/or {0}.pdf from {1}. Rerun in this folder with: gnuplot {0}.gp\n"
       "# Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.\n"
       "formats = {2}\n"
       "width = {3}\n"
@@ -180,15 +199,17 @@ std::string script_text(const Figure& figure, Format format) {
       "      set terminal png size width, height enhanced font font_spec\n"
       "    }}\n"
       "    set output \"{0}.png\"\n"
-      "  }} else {{\n"
+      "  }}\n"
+      "  if (format eq \"svg\") {{\n"
       "    set terminal svg size width, height enhanced font font_spec background rgb \"white\"\n"
       "    set output \"{0}.svg\"\n"
+      "  }}\n"
+      "  if (format eq \"pdf\") {{\n"
+      "    # the page in points as the PNG is in pixels, so that the font keeps its size relative to it\n"
+      "    set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec\n"
+      "    set output \"{0}.pdf\"\n"
       "  }}\n",
-      figure.name, data_file,
-      quoted(format == Format::png   ? "png"
-             : format == Format::svg ? "svg"
-                                     : "png svg"),
-      figure.width, figure.height);
+      figure.name, data_file, figures::quoted(listed), figure.width, figure.height);
   if (figure.panels.size() > 1) gp += fmt::format("  set multiplot layout {}, 1\n", figure.panels.size());
   for (const auto& panel : figure.panels) append_panel(gp, panel, data_file);
   if (figure.panels.size() > 1) gp += "  unset multiplot\n";
@@ -240,11 +261,11 @@ std::string run_gnuplot(const std::filesystem::path& folder, const std::string& 
 }
 
 std::vector<std::filesystem::path> draw(const Figure& figure, const std::filesystem::path& folder,
-                                        Format format) {
+                                        Formats formats) {
   const auto data = folder / (figure.name + ".dat");
   const auto gp = folder / (figure.name + ".gp");
   io::write_file_atomically(data, data_text(figure));
-  io::write_file_atomically(gp, script_text(figure, format));
+  io::write_file_atomically(gp, script_text(figure, formats));
   const std::string output = run_gnuplot(folder, gp.filename().string());
   if (!output.empty()) {
     // A warning means the picture is not what the script asked for (empty range, missing data).
@@ -252,8 +273,9 @@ std::vector<std::filesystem::path> draw(const Figure& figure, const std::filesys
         fmt::format("gnuplot {} in {} reported: {}", gp.filename().string(), folder.string(), output));
   }
   std::vector<std::filesystem::path> written{data, gp};
-  if (format != Format::svg) written.push_back(folder / (figure.name + ".png"));
-  if (format != Format::png) written.push_back(folder / (figure.name + ".svg"));
+  if (formats.png) written.push_back(folder / (figure.name + ".png"));
+  if (formats.svg) written.push_back(folder / (figure.name + ".svg"));
+  if (formats.pdf) written.push_back(folder / (figure.name + ".pdf"));
   return written;
 }
 

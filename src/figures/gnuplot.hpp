@@ -9,8 +9,14 @@
 
 namespace rupture::figures {
 
-enum class Format { png, svg, both };
-Format parse_format(const std::string& text);  // "png" | "svg" | "both"; InputError otherwise
+// The pictures drawn from each figure's script: PNG for screens, SVG and PDF for papers (vector).
+struct Formats {
+  bool png = true, svg = true, pdf = true;
+  bool operator==(const Formats&) const = default;
+};
+// A comma-separated list of png, svg and pdf, or "all"; "both" (png,svg) is kept for older
+// scripts. InputError otherwise, naming the choices.
+Formats parse_formats(const std::string& text);
 
 // One table of the data file; gnuplot addresses it as `index N` (blocks are separated by two blank lines).
 // Missing values (e.g. an undefined derivative) are written as "?".
@@ -64,14 +70,14 @@ struct Figure {
 };
 
 std::string data_text(const Figure& figure);
-std::string script_text(const Figure& figure, Format format);
+std::string script_text(const Figure& figure, Formats formats);
 
 // Writes NAME.dat and NAME.gp atomically into `folder`, runs `gnuplot NAME.gp` there and returns the
 // files written. Any gnuplot output on stdout/stderr (warnings included) or a non-zero exit is a
 // RunError quoting it; a missing gnuplot is a RunError saying how to install it. The program is
 // $RUPTURE_GNUPLOT if set, else `gnuplot` from PATH.
 std::vector<std::filesystem::path> draw(const Figure& figure, const std::filesystem::path& folder,
-                                        Format format);
+                                        Formats formats);
 
 // Runs gnuplot on `script` with `folder` as working directory; returns its combined stdout+stderr.
 // Throws RunError when gnuplot cannot be started or exits non-zero.

@@ -58,6 +58,12 @@ void expect_svg(const fs::path& file) {
   EXPECT_THAT(text, HasSubstr("</svg>")) << file;
 }
 
+void expect_pdf(const fs::path& file) {
+  const std::string text = slurp(file);
+  EXPECT_EQ(text.rfind("%PDF-", 0), 0u) << file;
+  EXPECT_THAT(text, HasSubstr("%%EOF")) << file;
+}
+
 // Reruns the written script as a user would; gnuplot must not print anything.
 void expect_silent_rerun(const fs::path& folder, const std::string& name) {
   fs::remove(folder / (name + ".png"));
@@ -148,9 +154,10 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   for (const std::string name : {"loading", "breaking_rate"}) {
-    for (const std::string ext : {".gp", ".dat", ".png", ".svg"})
+    for (const std::string ext : {".gp", ".dat", ".png", ".svg", ".pdf"})
       EXPECT_TRUE(fs::exists(out / (name + ext))) << name << ext;
     expect_svg(out / (name + ".svg"));
+    expect_pdf(out / (name + ".pdf"));
   }
   // Two stacked panels (curves, delta_x posterior) make the loading figure taller.
   const auto loading = png_size(out / "loading.png");
@@ -407,14 +414,15 @@ TEST(Figures, GnuplotWarningFailsTheDrawing) {
   panel.series = {{0, 0, 1, "y"}};
   figure.panels.push_back(panel);
   try {
-    figures::draw(figure, dir.path(), figures::Format::png);
+    figures::draw(figure, dir.path(), figures::Formats{.png = true, .svg = false, .pdf = false});
     ADD_FAILURE() << "a gnuplot warning must fail the drawing";
   } catch (const RunError& e) {
     EXPECT_THAT(e.what(), HasSubstr("flat.gp"));
     EXPECT_THAT(e.what(), HasSubstr("empty y range"));
   }
   figure.panels.front().yrange = "[0:1]";
-  EXPECT_NO_THROW(figures::draw(figure, dir.path(), figures::Format::png));
+  EXPECT_NO_THROW(
+      figures::draw(figure, dir.path(), figures::Formats{.png = true, .svg = false, .pdf = false}));
 }
 
 TEST(Figures, DataFileSeparatesBlocksAndMarksMissingValues) {
@@ -427,10 +435,15 @@ TEST(Figures, DataFileSeparatesBlocksAndMarksMissingValues) {
   EXPECT_EQ(figures::data_text(figure),
             "# rupture test\n# index 0: first\n# x[1] y[1]\n0 2\n1 ?\n\n\n# index 1: second\n# x[1] y[1]\n5 "
             "0.25\n");
-  EXPECT_THROW(figures::parse_format("jpeg"), InputError);
-  const std::string both = figures::script_text(figure, figures::Format::both);
-  EXPECT_THAT(both, HasSubstr("formats = \"png svg\""));
-  EXPECT_THAT(figures::script_text(figure, figures::Format::svg), HasSubstr("formats = \"svg\""));
+  EXPECT_THROW(figures::parse_formats("jpeg"), InputError);
+  EXPECT_THROW(figures::parse_formats("png,"), InputError);
+  EXPECT_EQ(figures::parse_formats("svg,pdf"), (figures::Formats{.png = false, .svg = true, .pdf = true}));
+  EXPECT_EQ(figures::parse_formats("all"), figures::Formats{});
+  const std::string all = figures::script_text(figure, figures::Formats{});
+  EXPECT_THAT(all, HasSubstr("formats = \"png svg pdf\""));
+  EXPECT_THAT(all, HasSubstr("set terminal pdfcairo"));
+  EXPECT_THAT(figures::script_text(figure, figures::parse_formats("both")),
+              HasSubstr("formats = \"png svg\""));
 }
 
 }  // namespace
