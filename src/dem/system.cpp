@@ -159,6 +159,11 @@ Vec3 System::velocity(std::size_t sample_index) const {
   return {particles_.hot.vx[a], particles_.hot.vy[a], particles_.hot.vz[a]};
 }
 
+Vec3 System::force(std::size_t sample_index) const {
+  const auto a = particles_.storage_of_sample[sample_index];
+  return {particles_.hot.fx[a], particles_.hot.fy[a], particles_.hot.fz[a]};
+}
+
 void System::set_velocity(std::size_t sample_index, const Vec3& v) {
   const auto a = particles_.storage_of_sample[sample_index];
   particles_.hot.vx[a] = v.x;

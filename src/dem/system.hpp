@@ -76,6 +76,7 @@ class System {
   // Particle data in sample order (for outputs), and bond extension r - r0 (mm, NaN when broken).
   Vec3 position(std::size_t sample_index) const;
   Vec3 velocity(std::size_t sample_index) const;
+  Vec3 force(std::size_t sample_index) const;  // N: the net force of the last force pass
   // Initial condition (before the first step): velocity of one particle (mm/s).
   void set_velocity(std::size_t sample_index, const Vec3& v);
   // Breaks one intact bond now, exactly as a break found in a force pass (logged, energy released).

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/vtk.hpp"
 
 namespace rupture::figures {
 
@@ -20,41 +21,6 @@ namespace {
 // The share of bonds whose |extension| sets the ends of the colour scale; the few most stretched bonds
 // (at a crack tip) would otherwise wash every other bond out to the middle colour.
 constexpr double colour_quantile = 0.995;
-
-// The text between the opening tag of DataArray Name="NAME" and its closing tag.
-std::string_view array_text(std::string_view text, std::string_view name, const fs::path& file) {
-  const std::string key = fmt::format("Name=\"{}\"", name);
-  const auto at = text.find(key);
-  const auto open_end = at == std::string_view::npos ? at : text.find('>', at);
-  const auto close = open_end == std::string_view::npos ? open_end : text.find("</DataArray>", open_end);
-  if (close == std::string_view::npos) {
-    throw InputError(file.string(), fmt::format("no complete DataArray {}", name),
-                     "give a snapshot written by `rupture run` (output.snapshot_interval)");
-  }
-  return text.substr(open_end + 1, close - open_end - 1);
-}
-
-template <class T>
-std::vector<T> parse_numbers(std::string_view text, std::string_view name, const fs::path& file) {
-  std::vector<T> values;
-  const char* p = text.data();
-  const char* end = p + text.size();
-  for (;;) {
-    while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
-    if (p == end) break;
-    T value{};
-    const auto [next, error] = std::from_chars(p, end, value);
-    if (error != std::errc()) {
-      throw InputError(file.string(),
-                       fmt::format("DataArray {} holds '{}', not a number", name,
-                                   std::string_view(p, std::min<std::size_t>(end - p, 20))),
-                       "regenerate the snapshot with `rupture run`");
-    }
-    values.push_back(value);
-    p = next;
-  }
-  return values;
-}
 
 double quantile_of_magnitude(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -67,32 +33,21 @@ double quantile_of_magnitude(std::vector<double> values, double q) {
 }  // namespace
 
 SnapshotBonds read_snapshot_bonds(const fs::path& vtp) {
-  const std::string text = io::read_text_file(vtp);
-  const auto points = parse_numbers<double>(array_text(text, "Points", vtp), "Points", vtp);
-  const auto connectivity =
-      parse_numbers<std::uint64_t>(array_text(text, "connectivity", vtp), "connectivity", vtp);
-  const auto relative =
-      parse_numbers<double>(array_text(text, "relative_extension", vtp), "relative_extension", vtp);
-  if (points.size() % 3 != 0 || connectivity.size() != 2 * relative.size()) {
-    throw InputError(vtp.string(),
-                     fmt::format("{} point coordinates, {} bond ends and {} extensions do not match",
-                                 points.size(), connectivity.size(), relative.size()),
-                     "regenerate the snapshot with `rupture run`");
-  }
+  const io::VtkPolyData data = io::read_vtp(vtp);
+  const io::VtkArray* relative = data.line_array("relative_extension");
+  if (relative == nullptr || relative->components != 1)
+    throw InputError(vtp.string(), "no line array relative_extension",
+                     "give a snapshot written by `rupture run` (output.snapshot_interval)");
+  const std::vector<double> extension = io::as_doubles(*relative);
   SnapshotBonds bonds;
-  const std::size_t n_points = points.size() / 3;
-  for (std::size_t b = 0; b < relative.size(); ++b) {
-    const auto a = connectivity[2 * b], c = connectivity[2 * b + 1];
-    if (a >= n_points || c >= n_points) {
-      throw InputError(vtp.string(),
-                       fmt::format("bond {} refers to point {} of {}", b, std::max(a, c), n_points),
-                       "regenerate the snapshot with `rupture run`");
-    }
-    bonds.x_a.push_back(points[3 * a]);
-    bonds.y_a.push_back(points[3 * a + 1]);
-    bonds.x_b.push_back(points[3 * c]);
-    bonds.y_b.push_back(points[3 * c + 1]);
-    bonds.relative_extension.push_back(relative[b]);
+  for (std::size_t b = 0; b < data.lines.size(); ++b) {
+    const Vec3& a = data.points[data.lines[b][0]];
+    const Vec3& c = data.points[data.lines[b][1]];
+    bonds.x_a.push_back(a.x);
+    bonds.y_a.push_back(a.y);
+    bonds.x_b.push_back(c.x);
+    bonds.y_b.push_back(c.y);
+    bonds.relative_extension.push_back(extension[b]);
   }
   return bonds;
 }
