@@ -797,6 +797,17 @@ nlohmann::json to_json(const AnalysisResult& r) {
   }
   j["filter"] = filter;
   j["derivative"] = {{"method", "Savitzky-Golay, cubic"}, {"window_samples", r.derivative_window}};
+  // The curves the maxima were sought on, on the uniform grid x_i = x0 + i * step: what a figure
+  // draws, without running the analysis again (empty when the curve was rejected before filtering).
+  j["curves"] = {{"x0", {{"value", r.x0}, {"unit", r.strain_unit}}},
+                 {"step", {{"value", r.step}, {"unit", r.strain_unit}}},
+                 {"filtered_force", r.filtered_force},
+                 {"filtered_elastic_energy", r.filtered_energy},
+                 {"energy_rate", r.energy_rate},
+                 {"units",
+                  {{"filtered_force", r.force_unit},
+                   {"filtered_elastic_energy", r.energy_unit},
+                   {"energy_rate", per_strain(r.energy_unit, r.strain_unit)}}}};
   j["noise"] = {{"force", {{"value", r.force_noise}, {"unit", r.force_unit}}},
                 {"elastic_energy", {{"value", r.energy_noise}, {"unit", r.energy_unit}}},
                 {"estimator", "rms of third differences / sqrt(20), largest 0.5 % trimmed"}};

@@ -9,7 +9,6 @@
 #include <optional>
 #include <string>
 
-#include "analysis/analysis.hpp"
 #include "core/error.hpp"
 #include "figures/scan_figures.hpp"
 #include "figures/snapshots.hpp"
@@ -113,48 +112,31 @@ std::optional<double> json_value(const nlohmann::json& analysis, const char* key
   return it->at("value").get<double>();
 }
 
-// ℰ = dE_e/dx as the analysis computed it — the same columns, filter and derivative window that
-// analysis.json records, so the automatic choices are not made again — on the analysis' uniform strain
-// grid, divided by the fitted ℰ_max so that the marked x_p sits at the top of the curve.
-DataBlock analysed_rate(const io::CsvTable& curves, const nlohmann::json& analysis,
-                        const std::string& strain_field) {
-  const auto& inputs = analysis.at("inputs");
-  analysis::ColumnChoice columns;
-  columns.strain = inputs.at("columns").at("strain").get<std::string>();
-  columns.force = inputs.at("columns").at("force").get<std::string>();
-  columns.energy = inputs.at("columns").at("energy").get<std::string>();
-  columns.strain_scale = inputs.at("scales").at("strain").get<double>();
-  columns.force_scale = inputs.at("scales").at("force").get<double>();
-  columns.energy_scale = inputs.at("scales").at("energy").get<double>();
-  analysis::AnalysisOptions options;
-  const auto& filter = analysis.at("filter");
-  const std::string kind = filter.at("kind").get<std::string>();
-  if (kind == analysis::to_string(analysis::FilterKind::butterworth)) {
-    options.filter.kind = analysis::FilterKind::butterworth;
-    options.filter.butterworth_order = filter.at("order").get<int>();
-    options.filter.cutoff = filter.at("cutoff_nyquist").get<double>();
-  } else if (kind == analysis::to_string(analysis::FilterKind::savitzky_golay)) {
-    options.filter.kind = analysis::FilterKind::savitzky_golay;
-    options.filter.savgol_window = filter.at("window_samples").get<int>();
-    options.filter.savgol_order = filter.at("polynomial_order").get<int>();
-  } else {
-    options.filter.kind = analysis::FilterKind::none;
-  }
-  options.derivative_window = analysis.at("derivative").at("window_samples").get<int>();
-  const auto result = analysis::analyze_curve(analysis::select_curve(curves, columns), options);
-  std::vector<double> grid(result.energy_rate.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = result.x0 + static_cast<double>(i) * result.step;
-  std::vector<double> rate = result.energy_rate;
+// ℰ = dE_e/dx as the analysis computed it (analysis.json's "curves": filtered, differentiated, on its
+// uniform strain grid), divided by the fitted ℰ_max so that the marked x_p sits at the top of the curve.
+// nullopt for an analysis.json of an earlier build, which did not carry the curves.
+std::optional<DataBlock> analysed_rate(const nlohmann::json& analysis, const std::string& strain_field,
+                                       const std::string& source) {
+  const auto curves = analysis.find("curves");
+  if (curves == analysis.end() || curves->at("energy_rate").empty()) return std::nullopt;
+  const double x0 = curves->at("x0").at("value").get<double>(),
+               step = curves->at("step").at("value").get<double>();
+  std::vector<double> rate;
+  for (const auto& v : curves->at("energy_rate"))  // null: a value JSON cannot hold (NaN)
+    rate.push_back(v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>());
+  std::vector<double> grid(rate.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = x0 + static_cast<double>(i) * step;
   if (const auto top = json_value(analysis, "Erate_max"); top && *top > 0.0) {
     for (auto& v : rate) v /= *top;
   } else {
-    rate = normalised(std::move(rate), "the energy rate dE_e/dx", curves.source);
+    rate = normalised(std::move(rate), "the energy rate dE_e/dx", source);
   }
-  return {fmt::format("energy rate from the analysis: {} filter, Savitzky-Golay derivative over {} samples, "
-                      "divided by Erate_max",
-                      kind, result.derivative_window),
-          {strain_field, "Erate/Erate_max[1]"},
-          {std::move(grid), std::move(rate)}};
+  return DataBlock{fmt::format("energy rate from the analysis: {} filter, Savitzky-Golay derivative over {} "
+                               "samples, divided by Erate_max",
+                               analysis.at("filter").at("kind").get<std::string>(),
+                               analysis.at("derivative").at("window_samples").get<int>()),
+                   {strain_field, "Erate/Erate_max[1]"},
+                   {std::move(grid), std::move(rate)}};
 }
 
 Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::path& analysis_file) {
@@ -181,7 +163,7 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
       for (const char* key : {"x_p", "x_c", "x_m"}) {
         if (const auto value = json_value(analysis, key)) markers.push_back({*value, key});
       }
-      analysed = analysed_rate(curves, analysis, curves.header[strain_column]);
+      analysed = analysed_rate(analysis, curves.header[strain_column], analysis_file.string());
     } catch (const nlohmann::json::exception& e) {
       throw InputError(analysis_file.string(), fmt::format("not an analysis.json: {}", e.what()),
                        "rerun `rupture analyze` to rewrite it");
@@ -194,7 +176,7 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
                 {x, normalised(curves.column("force_top"), "the force", curves.source),
                  normalised(energy, "the elastic energy", curves.source)}};
   if (!analysed) {
-    // Not analysed: centred differences of the raw E_e, noisy but honest.
+    // Not analysed (or by an earlier build): centred differences of the raw E_e, noisy but honest.
     raw.title += " (energy rate by centred differences of E_e)";
     raw.header.push_back("Erate/Erate_max[1]");
     raw.columns.push_back(
@@ -237,10 +219,10 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
       "Loading curves: force on the top plate F, elastic energy E_e and energy rate ℰ = dE_e/dx against "
       "strain, each over its maximum";
   figure.caption +=
-      analysis.is_null()
+      !analysed
           ? " (ℰ by centred differences of the recorded E_e; run `rupture analyze` for the filtered one)"
-          : " (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max); dashed lines mark "
-            "x_p, x_c and x_m from analysis.json";
+          : " (ℰ as the analysis filtered and differentiated it, over the fitted ℰ_max)";
+  if (!analysis.is_null()) figure.caption += "; dashed lines mark x_p, x_c and x_m from analysis.json";
   figure.caption +=
       figure.panels.size() > 1 ? ", and the lower panel the posterior density of δ_x = x_c - x_p." : ".";
   return figure;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -168,6 +169,17 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   EXPECT_EQ(breaks.height, 700u);
   // x_p, x_c, x_m from analysis.json, then the MAP of delta_x.
   EXPECT_EQ(marker_strains(out / "loading.gp").size(), 4u);
+  // The energy rate drawn is the one analysis.json carries (no second analysis), over its E_rate,max.
+  const auto analysis = nlohmann::json::parse(slurp(run / "analysis.json"));
+  const auto& stored = analysis.at("curves").at("energy_rate");
+  const auto all = blocks(out / "loading.dat");
+  ASSERT_GE(all.size(), 2u);
+  ASSERT_EQ(all[1].rows.size(), stored.size());
+  const double top = analysis.at("Erate_max").at("value").get<double>();
+  for (std::size_t i = 0; i < stored.size(); i += 37)
+    EXPECT_NEAR(all[1].rows[i][1], stored[i].get<double>() / top,
+                1e-12 * std::abs(stored[i].get<double>() / top))
+        << i;
   expect_silent_rerun(out, "loading");
   expect_silent_rerun(out, "breaking_rate");
 }
