@@ -258,7 +258,7 @@ class TensionRun {
       fail_on_write(e);
     }
     const std::string failure = close();
-    if (!stable_) throw RunError(failure);
+    if (!stable_) throw UnstableRun(failure, summary_);
     return summary_;
   }
 
@@ -561,6 +561,7 @@ class TensionRun {
   // the failure message of an unstable run ("" otherwise).
   std::string close() {
     summary_.steps = system_.steps_done();
+    summary_.dt = plan_.dt;
     summary_.strain = strain_now();
     summary_.broken_bonds = broken_bonds();
     summary_.wall_seconds = wall_now();

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "dem/system.hpp"
 #include "loading/config.hpp"
 #include "sample/sample.hpp"
@@ -46,6 +47,7 @@ struct RunSummary {
   std::string status;       // "finished", "failed" or "interrupted"
   std::string stop_reason;  // "separated", "max_strain", "max_steps", "unstable", "interrupted"
   std::uint64_t steps = 0;
+  double dt = 0.0;      // s, the step used
   double strain = 0.0;  // % at the end
   double wall_seconds = 0.0;
   double max_energy_error = 0.0;  // mJ: max |W - (E_e + E_k + E_contact + E_glue + E_released + E_damped)|
@@ -55,6 +57,14 @@ struct RunSummary {
   // written after the step it came in.
   int signal = 0;
   std::filesystem::path checkpoint;
+};
+
+// A run that became unstable: RunError's message (the step, the particle, the likely cause, a dt)
+// with the run's summary (status "failed", stop_reason "unstable"), which run.json also holds.
+class UnstableRun : public RunError {
+ public:
+  UnstableRun(const std::string& message, RunSummary ended) : RunError(message), summary(std::move(ended)) {}
+  RunSummary summary;
 };
 
 // What a new run does with a folder that holds a run which ended (finished, unstable, or killed
@@ -88,7 +98,7 @@ struct RunOptions {
 // checkpoint.every steps or checkpoint.minutes, and after the step in which SIGINT/SIGTERM came
 // (if install_interrupt_handlers() was called) or `on_row` said stop, then returns with status
 // "interrupted".
-// An unstable run keeps what it wrote, marks run.json failed and throws RunError naming the step,
+// An unstable run keeps what it wrote, marks run.json failed and throws UnstableRun naming the step,
 // the particle, the likely cause and a dt; a failed write throws RunError naming the file and the
 // last intact checkpoint. A finished or unstable run removes its checkpoints.
 RunSummary run_simulation(const RunConfig& config, const Sample& sample, const std::filesystem::path& folder,

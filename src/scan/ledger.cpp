@@ -173,37 +173,29 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
   const std::string command = point_command(plan, point, threads);
   nlohmann::json row = base_row(point);
   std::string status = status::error, why;
-  try {
-    const auto summary = loading::run_simulation(config, sample, attempt, command, {.echo_monitor = false});
+  const auto record_run = [&](const loading::RunSummary& summary) {
+    row["dt"] = summary.dt;
     row["stop_reason"] = summary.stop_reason;
     row["steps"] = summary.steps;
     row["final_strain"] = summary.strain;
     row["broken_bonds"] = summary.broken_bonds;
+  };
+  try {
+    const auto summary = loading::run_simulation(config, sample, attempt, command, {.echo_monitor = false});
+    record_run(summary);
     const bool separated = summary.stop_reason == "separated";
     status = separated ? status::ok : status::no_separation;
     if (!separated)
       why = fmt::format("not separated at the {} stop (strain {:.4g} %, {} steps)", summary.stop_reason,
                         summary.strain, summary.steps);
     analyse_attempt(attempt, row, status, why);
-  } catch (const RunError& e) {
+  } catch (const loading::UnstableRun& e) {
+    record_run(e.summary);
     status = status::unstable;
     why = e.what();
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // e.g. a full disk
     status = status::error;
     why = e.what();
-  }
-  // dt as the run chose it (run.json is written before the first step).
-  if (std::filesystem::exists(attempt / "run.json")) {
-    const auto run = nlohmann::json::parse(io::read_text_file(attempt / "run.json"));
-    row["dt"] = run.at("plan").at("dt_s");
-    if (status == status::unstable && run.value("stop_reason", "") != "unstable")
-      status = status::error;  // e.g. disk full
-    if (status == status::unstable) {
-      row["stop_reason"] = run.value("stop_reason", "unstable");
-      row["steps"] = run.value("steps", std::uint64_t(0));
-      row["final_strain"] = run.value("final_strain_percent", 0.0);
-      row["broken_bonds"] = run.value("broken_bonds", std::uint64_t(0));
-    }
   }
   row["status"] = status;
   if (status != status::ok) {

@@ -543,6 +543,8 @@ TEST(ScanCommand, FailedPointsAreRecordedAndTheScanGoesOn) {
   EXPECT_EQ(table.text(1, "status"), "unstable");
   EXPECT_NE(table.text(1, "why").find("unstable"), std::string::npos);
   EXPECT_EQ(*table.number(1, "dt"), 2.5e-7);
+  EXPECT_EQ(table.text(1, "stop_reason"), "unstable");  // the failed run's own summary
+  EXPECT_GT(*table.number(1, "steps"), 0.0);
   EXPECT_EQ(table.text(2, "status"), "no_separation");
   EXPECT_EQ(table.text(2, "stop_reason"), "max_strain");
   EXPECT_EQ(*table.number(2, "accepted"), 0.0);
