@@ -449,6 +449,21 @@ RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem
   return config;
 }
 
+RunConfig with_values(RunConfig base, const nlohmann::json& values, const std::string& source) {
+  const Origin origin{source, {}};
+  for (const auto& [section_key, section_node] : table_from_json(values, source)) {
+    for (const auto& [name_key, node] : *section_node.as_table()) {
+      const std::string path = std::string(section_key.str()) + "." + std::string(name_key.str());
+      const Key* key = find_key(path);
+      if (key == nullptr)
+        throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
+      key->read(node, base, origin.at(path));
+    }
+  }
+  validate(base, origin);
+  return base;
+}
+
 std::string config_reference() {
   std::string out =
       "# rupture run configuration: every key with its unit and default.\n"

@@ -86,6 +86,11 @@ RunConfig parse_config(const std::string& toml_text, const std::string& source,
 // `config_file` is where the original was read from: relative sample paths resolve against it.
 RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem::path& config_file);
 
+// `base` with some keys set to typed values ({"section": {"key": value}}, to_json's form; a null
+// leaves the key as it is), each read and range-checked by the schema as a file's key would be, and
+// the relations between keys checked again. `source` names the values in errors.
+RunConfig with_values(RunConfig base, const nlohmann::json& values, const std::string& source);
+
 // Every key with unit, default and meaning, as a commented TOML document (for --help-config).
 std::string config_reference();
 

@@ -286,18 +286,31 @@ nlohmann::json to_json(const ScanConfig& c) {
             {"rows_to_first_break", c.rows_to_first_break}}}};
 }
 
-loading::RunConfig base_config(const ScanConfig& config) {
-  std::vector<std::string> overrides = config.sample;
-  overrides.insert(overrides.end(), config.set.begin(), config.set.end());
+namespace {
+
+// The base config with the scan's [sample] keys and set (strings the scan config holds as a user
+// wrote them, so they go the --set way); errors name the scan file as their place.
+loading::RunConfig load_base_config(const std::filesystem::path& base,
+                                    const std::vector<std::string>& overrides, const std::string& scan_file) {
   try {
-    return loading::load_config(config.base, overrides);
+    return loading::load_config(base, overrides);
   } catch (const InputError& e) {
-    // The scan's [sample] keys and [scan] set reach the run config as --set overrides: name the
-    // scan file as their place instead of a --set the user never typed.
     const std::string message = e.what();
     if (!message.starts_with("--set ")) throw;
-    throw InputError(config.file.string() + " ([sample] or [scan] set)", message.substr(6));
+    throw InputError(scan_file + " ([sample] or [scan] set)", message.substr(6));
   }
+}
+
+std::vector<std::string> base_overrides(const ScanConfig& config) {
+  std::vector<std::string> overrides = config.sample;
+  overrides.insert(overrides.end(), config.set.begin(), config.set.end());
+  return overrides;
+}
+
+}  // namespace
+
+loading::RunConfig base_config(const ScanConfig& config) {
+  return load_base_config(config.base, base_overrides(config), config.file.string());
 }
 
 std::vector<double> log_spaced(const LogRange& range) {
@@ -369,6 +382,9 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
                      "give [scan] output (or -o) a folder path");
   plan.sample_fingerprint = loading::sample_fingerprint(sample);
   plan.base = config.base;
+  plan.base_config = base;
+  plan.base_overrides = base_overrides(config);
+  plan.dt = config.dt;
   plan.scan_config = to_json(config);
   std::vector<std::pair<double, double>> pairs;
   if (config.grid_k_n)
@@ -418,15 +434,6 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
       p.max_strain = round6(std::clamp(config.max_strain_factor * first_break,
                                        std::min(config.max_strain_min, base.max_strain), base.max_strain));
     }
-    p.overrides = config.sample;
-    p.overrides.insert(p.overrides.end(), config.set.begin(), config.set.end());
-    p.overrides.push_back(fmt::format("bonds.stiffness={}", k));
-    p.overrides.push_back(fmt::format("bonds.break_distance={}", b));
-    p.overrides.push_back(config.dt ? fmt::format("time.dt={}", *config.dt) : "time.dt=\"auto\"");
-    p.overrides.push_back(fmt::format("loading.ramp_steps={}", p.ramp_steps));
-    p.overrides.push_back(fmt::format("stop.max_strain={}", p.max_strain));
-    if (config.interval == "scaled")
-      p.overrides.push_back(fmt::format("output.interval={}", p.output_interval));
     plan.points.push_back(std::move(p));
   }
   // Bad input fails before anything runs: every point's config, and a given dt against each point's
@@ -436,16 +443,32 @@ Plan make_plan(const ScanConfig& config, const Sample& sample) {
   return plan;
 }
 
+nlohmann::json point_settings(const Plan& plan, const Point& point, int threads) {
+  nlohmann::json settings = {{"bonds", {{"stiffness", point.k_n}, {"break_distance", point.b_d}}},
+                             {"time", {{"dt", plan.dt ? nlohmann::json(*plan.dt) : nlohmann::json("auto")}}},
+                             {"loading", {{"ramp_steps", point.ramp_steps}}},
+                             {"stop", {{"max_strain", point.max_strain}}},
+                             {"run", {{"threads", threads}}}};
+  if (point.output_interval > 0) settings["output"]["interval"] = point.output_interval;
+  return settings;
+}
+
 loading::RunConfig point_config(const Plan& plan, const Point& point, int threads) {
-  auto overrides = point.overrides;
-  overrides.push_back(fmt::format("run.threads={}", threads));
-  return loading::load_config(plan.base, overrides);
+  return loading::with_values(plan.base_config, point_settings(plan, point, threads),
+                              fmt::format("{} (scan point {})", plan.base.string(), point.name));
 }
 
 std::string point_command(const Plan& plan, const Point& point, int threads) {
   std::string command = "rupture run '" + plan.base.string() + "'";
-  for (const auto& o : point.overrides) command += " --set '" + o + "'";
-  return command + fmt::format(" --set run.threads={}", threads);
+  for (const auto& o : plan.base_overrides) command += " --set '" + o + "'";
+  const nlohmann::json settings = point_settings(plan, point, threads);  // kept alive for items()
+  for (const auto& [section, keys] : settings.items())
+    for (const auto& [name, value] : keys.items()) {
+      const std::string text =
+          value.is_number_float() ? fmt::format("{}", value.get<double>()) : value.dump();
+      command += fmt::format(" --set '{}.{}={}'", section, name, text);
+    }
+  return command;
 }
 
 nlohmann::json to_json(const Plan& plan) {
@@ -457,9 +480,9 @@ nlohmann::json to_json(const Plan& plan) {
                       {"folder", "points/" + p.name},
                       {"ramp_steps", p.ramp_steps},
                       {"max_strain_percent", p.max_strain},
-                      {"output_interval", p.output_interval},
-                      {"overrides", p.overrides}});
+                      {"output_interval", p.output_interval}});
   return {{"base", plan.base.string()},
+          {"base_config", loading::to_json(plan.base_config)},
           {"scan_config", plan.scan_config},
           {"sample_fingerprint", fingerprint_text(plan.sample_fingerprint)},
           {"points", points}};
@@ -470,6 +493,15 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
   plan.folder = folder;
   plan.base = document.at("base").get<std::string>();
   plan.scan_config = document.at("scan_config");
+  const auto& scan_config = plan.scan_config;
+  plan.base_overrides = scan_config.at("sample").get<std::vector<std::string>>();
+  for (const auto& o : scan_config.at("scan").at("set")) plan.base_overrides.push_back(o.get<std::string>());
+  if (const auto& dt = scan_config.at("rules").at("dt_s"); dt.is_number()) plan.dt = dt.get<double>();
+  // Plans of rupture 0.1 lack the resolved base config: it is read as they read it.
+  plan.base_config =
+      document.contains("base_config")
+          ? loading::config_from_json(document.at("base_config"), plan.base)
+          : load_base_config(plan.base, plan.base_overrides, scan_config.at("file").get<std::string>());
   if (document.contains("sample_fingerprint"))
     plan.sample_fingerprint =
         std::strtoull(document.at("sample_fingerprint").get<std::string>().c_str(), nullptr, 16);
@@ -481,8 +513,7 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
     p.name = point_name(p.k_n, p.b_d);
     p.ramp_steps = j.at("ramp_steps").get<std::int64_t>();
     p.max_strain = j.at("max_strain_percent").get<double>();
-    p.output_interval = j.value("output_interval", std::int64_t{0});  // plans before 0.2 lack it
-    p.overrides = j.at("overrides").get<std::vector<std::string>>();
+    p.output_interval = j.value("output_interval", std::int64_t{0});  // plans of 0.1 lack it
     plan.points.push_back(std::move(p));
   }
   return plan;

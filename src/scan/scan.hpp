@@ -59,23 +59,25 @@ std::vector<double> log_spaced(const LogRange& range);
 
 struct Point {
   std::size_t index = 0;
-  double k_n = 0.0, b_d = 0.0;         // N/mm, mm
-  std::string name;                    // folder under points/, e.g. "kn_1000_bd_0.005"
-  std::int64_t ramp_steps = 0;         // steps
-  double max_strain = 0.0;             // %
-  std::int64_t output_interval = 0;    // steps between curve rows
-  std::vector<std::string> overrides;  // applied to the base config (threads excluded)
+  double k_n = 0.0, b_d = 0.0;       // N/mm, mm
+  std::string name;                  // folder under points/, e.g. "kn_1000_bd_0.005"
+  std::int64_t ramp_steps = 0;       // steps
+  double max_strain = 0.0;           // %
+  std::int64_t output_interval = 0;  // steps between curve rows (0: the base config's, plans of 0.1)
 };
 
 // The most points one scan folder takes (a grid of 10^8 would only exhaust memory).
 inline constexpr std::size_t max_points = 100000;
 
 struct Plan {
-  std::filesystem::path folder;          // the scan folder
-  std::filesystem::path base;            // the base run config
-  std::uint64_t sample_fingerprint = 0;  // loading::sample_fingerprint of the sample every point runs on
-  nlohmann::json scan_config;            // to_json(ScanConfig), for scan.json
-  std::vector<Point> points;             // grid (k_n slowest) then the list; duplicates dropped
+  std::filesystem::path folder;             // the scan folder
+  std::filesystem::path base;               // the base run config
+  loading::RunConfig base_config;           // it with the scan's [sample] keys and set, read once
+  std::vector<std::string> base_overrides;  // those keys as the scan config wrote them (for commands)
+  std::optional<double> dt;                 // s, [rules] dt for every point; empty: "auto"
+  std::uint64_t sample_fingerprint = 0;     // loading::sample_fingerprint of the sample every point runs on
+  nlohmann::json scan_config;               // to_json(ScanConfig), for scan.json
+  std::vector<Point> points;                // grid (k_n slowest) then the list; duplicates dropped
 };
 
 std::string point_name(double k_n, double b_d);
@@ -88,7 +90,9 @@ Plan make_plan(const ScanConfig& config, const Sample& sample);
 // A sample fingerprint as 16 hex digits (JSON numbers lose the last bits of a 64-bit integer).
 std::string fingerprint_text(std::uint64_t fingerprint);
 
-// The run config of one point, with `threads` OpenMP threads.
+// The keys a point sets over the base config, as typed values ({"bonds": {"stiffness": 1e3}, ...}).
+nlohmann::json point_settings(const Plan& plan, const Point& point, int threads);
+// The run config of one point, with `threads` OpenMP threads: the base config with its settings.
 loading::RunConfig point_config(const Plan& plan, const Point& point, int threads);
 // "rupture run BASE --set ..." that reproduces the point by hand.
 std::string point_command(const Plan& plan, const Point& point, int threads);

@@ -110,9 +110,8 @@ TEST(ScanPlan, StrainRulesEndTheRampAndSpaceTheRowsByTheFirstBreakStrain) {
     // The ramp v/2 (1 - cos) over T covers half of v T: 10 % of the first-break strain takes 0.2 x steps.
     EXPECT_NEAR(double(p.ramp_steps), 0.2 * steps, 1.0) << p.name;
     EXPECT_NEAR(double(p.output_interval), steps / 10.0, 1.0) << p.name;
-    EXPECT_NE(std::find(p.overrides.begin(), p.overrides.end(),
-                        fmt::format("output.interval={}", p.output_interval)),
-              p.overrides.end());
+    EXPECT_EQ(point_settings(plan, p, 1)["output"]["interval"], p.output_interval);
+    EXPECT_EQ(point_config(plan, p, 1).output_interval, p.output_interval);
   }
   // dt ~ 1/sqrt(k_n): 100 times the stiffness, ten times the steps to the same strain; b_d ten
   // times larger, ten times the steps.
