@@ -341,10 +341,10 @@ void validate(const RunConfig& c, const Origin& origin) {
         fmt::format("use at most {:g} particles", max_particles));
 }
 
-RunConfig from_table(const toml::table& table, const Origin& origin) {
+// Reads every key of `table` into `config` through the schema (unknown keys refused), then checks
+// the relations between keys.
+RunConfig read_keys(RunConfig config, const toml::table& table, const Origin& origin) {
   const std::string& source = origin.file;
-  RunConfig config;
-  config.config_file = source;
   for (const auto& [section_key, section_node] : table) {
     const std::string section(section_key.str());
     const auto* sub = section_node.as_table();
@@ -362,6 +362,12 @@ RunConfig from_table(const toml::table& table, const Origin& origin) {
   }
   validate(config, origin);
   return config;
+}
+
+RunConfig from_table(const toml::table& table, const Origin& origin) {
+  RunConfig defaults;
+  defaults.config_file = origin.file;
+  return read_keys(std::move(defaults), table, origin);
 }
 
 // A resolved config (to_json's form) as a TOML table, so that it is read and checked by the same
@@ -450,18 +456,7 @@ RunConfig config_from_json(const nlohmann::json& resolved, const std::filesystem
 }
 
 RunConfig with_values(RunConfig base, const nlohmann::json& values, const std::string& source) {
-  const Origin origin{source, {}};
-  for (const auto& [section_key, section_node] : table_from_json(values, source)) {
-    for (const auto& [name_key, node] : *section_node.as_table()) {
-      const std::string path = std::string(section_key.str()) + "." + std::string(name_key.str());
-      const Key* key = find_key(path);
-      if (key == nullptr)
-        throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
-      key->read(node, base, origin.at(path));
-    }
-  }
-  validate(base, origin);
-  return base;
+  return read_keys(std::move(base), table_from_json(values, source), Origin{source, {}});
 }
 
 std::string config_reference() {
