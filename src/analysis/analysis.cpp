@@ -766,6 +766,111 @@ const char* to_string(DelayMethod method) {
   return method == DelayMethod::fitted_maxima ? "fitted-maxima" : "shift-l1";
 }
 
+namespace {
+
+// The filter actually used, with its settings.
+nlohmann::json filter_json(const AnalysisResult& r) {
+  nlohmann::json filter = {{"kind", to_string(r.filter.kind)},
+                           {"applied_to", {"force", "elastic_energy"}},
+                           {"zero_phase", true},
+                           {"discrepancy", r.filter.discrepancy}};
+  if (r.filter.kind == FilterKind::butterworth) {
+    filter["order"] = r.filter.butterworth_order;
+    filter["cutoff_nyquist"] = r.filter.cutoff;
+    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)},
+                                   {"unit", unit_ratio("1", r.strain_unit)}};
+    filter["method"] = "forward-backward second-order sections, odd padding (sosfiltfilt)";
+  } else if (r.filter.kind == FilterKind::savitzky_golay) {
+    filter["window_samples"] = r.filter.savgol_window;
+    filter["polynomial_order"] = r.filter.savgol_order;
+  }
+  return filter;
+}
+
+// δ_x with its method, intervals and distribution (null when not estimated).
+nlohmann::json delay_json(const AnalysisResult& r) {
+  if (!r.delay) return nullptr;
+  const auto& d = *r.delay;
+  nlohmann::json delta = {{"value", d.mean},
+                          {"error", d.sd},
+                          {"unit", r.strain_unit},
+                          {"method", to_string(r.delay_method)},
+                          {"map", d.map},
+                          {"mean", d.mean},
+                          {"median", d.median},
+                          {"sd", d.sd},
+                          {"ci68", {d.ci68_low, d.ci68_high}},
+                          {"ci95", {d.ci95_low, d.ci95_high}}};
+  const nlohmann::json density = {{"delta", d.delta},
+                                  {"density", d.density},
+                                  {"delta_unit", r.strain_unit},
+                                  {"density_unit", unit_ratio("1", r.strain_unit)}};
+  if (r.delay_method == DelayMethod::fitted_maxima) {
+    delta["model"] =
+        "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise";
+    delta["bias"] = r.delta_x_bias;
+    delta["sampling_distribution"] = density;
+  } else {
+    delta["model"] = "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)";
+    delta["prior"] = {{"kind", "uniform"}, {"range", {d.prior_low, d.prior_high}}};
+    delta["misfit_window"] = {d.window_low, d.window_high};
+    delta["misfit_samples"] = d.window_samples;
+    delta["force_noise_sigma"] = {{"value", d.noise_sigma}, {"unit", r.force_unit}};
+    delta["misfit_scale"] = {{"value", d.misfit_scale}, {"unit", r.force_unit}};
+    delta["correlation_length_samples"] = d.correlation;
+    delta["scale_at_map"] = {{"value", d.scale_at_map},
+                             {"unit", unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit))}};
+    delta["at_prior_bound"] = d.at_prior_bound;
+    delta["posterior"] = density;
+  }
+  return delta;
+}
+
+// How the uncertainties were found: the bootstrap's window, replicates and fitted noise model.
+nlohmann::json uncertainty_json(const AnalysisResult& r) {
+  const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
+    return nlohmann::json{{"white_sd", c.white}, {"walk_step_sd", c.walk}, {"unit", unit}};
+  };
+  return {{"method",
+           "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
+           "filtered curves, every replicate filtered, differentiated and fitted again"},
+          {"replicates", r.bootstrap_replicates},
+          {"failed_replicates", r.bootstrap_failed},
+          {"window", {r.bootstrap_window_low, r.bootstrap_window_high}},
+          {"window_unit", r.strain_unit},
+          {"noise",
+           {{"force", noise_json(r.noise_model.force, r.force_unit)},
+            {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
+            {"correlation", r.noise_model.correlation}}}};
+}
+
+// The breaking class with its reason and features (null when x_c was not found).
+nlohmann::json mechanism_json(const AnalysisResult& r) {
+  if (!r.mechanism) return nullptr;
+  const auto& f = r.features;
+  nlohmann::json crack = nullptr;
+  if (f.crack)
+    crack = {{"height_over_l0", f.crack->height},
+             {"distance_to_plate_over_l0", f.crack->to_plate},
+             {"localisation", f.crack->localisation},
+             {"planes", f.crack->planes}};
+  // A rejected curve carries no class (a ductile-like one is rejected for being ductile-like).
+  return {{"class", r.accepted ? nlohmann::json(to_string(r.mechanism->mechanism)) : nlohmann::json(nullptr)},
+          {"features_say", to_string(r.mechanism->mechanism)},
+          {"reason", r.mechanism->reason},
+          {"features",
+           {{"critical_strain_percent", optional_json(f.critical_strain_percent)},
+            {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
+            {"significant_force_maxima", f.force_maxima},
+            {"break_spread_over_x_c", optional_json(f.break_spread)},
+            {"post_peak_decay_over_x_c", optional_json(f.post_peak_decay)},
+            {"loading_undulation_over_F_c", optional_json(f.loading_undulation)},
+            {"crack", crack},
+            {"Gamma", optional_json(f.gamma)}}}};
+}
+
+}  // namespace
+
 nlohmann::json to_json(const AnalysisResult& r) {
   nlohmann::json j;
   j["source"] = r.source;
@@ -781,21 +886,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
                    {"output_rows", r.resample.output_rows},
                    {"block_average", r.resample.block_average},
                    {"step", {{"value", r.resample.step}, {"unit", r.strain_unit}}}};
-  nlohmann::json filter = {{"kind", to_string(r.filter.kind)},
-                           {"applied_to", {"force", "elastic_energy"}},
-                           {"zero_phase", true},
-                           {"discrepancy", r.filter.discrepancy}};
-  if (r.filter.kind == FilterKind::butterworth) {
-    filter["order"] = r.filter.butterworth_order;
-    filter["cutoff_nyquist"] = r.filter.cutoff;
-    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)},
-                                   {"unit", unit_ratio("1", r.strain_unit)}};
-    filter["method"] = "forward-backward second-order sections, odd padding (sosfiltfilt)";
-  } else if (r.filter.kind == FilterKind::savitzky_golay) {
-    filter["window_samples"] = r.filter.savgol_window;
-    filter["polynomial_order"] = r.filter.savgol_order;
-  }
-  j["filter"] = filter;
+  j["filter"] = filter_json(r);
   j["derivative"] = {{"method", "Savitzky-Golay, cubic"}, {"window_samples", r.derivative_window}};
   // The curves the maxima were sought on, on the uniform grid x_i = x0 + i * step: what a figure
   // draws, without running the analysis again (empty when the curve was rejected before filtering).
@@ -821,61 +912,10 @@ nlohmann::json to_json(const AnalysisResult& r) {
                     {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},
                     {"energy_rate", peak_json(r.rate_peak, r.strain_unit)},
                     {"method", "cubic least squares around the largest sample; stationary point"}};
-  if (r.delay) {
-    const auto& d = *r.delay;
-    nlohmann::json delta = {{"value", d.mean},
-                            {"error", d.sd},
-                            {"unit", r.strain_unit},
-                            {"method", to_string(r.delay_method)},
-                            {"map", d.map},
-                            {"mean", d.mean},
-                            {"median", d.median},
-                            {"sd", d.sd},
-                            {"ci68", {d.ci68_low, d.ci68_high}},
-                            {"ci95", {d.ci95_low, d.ci95_high}}};
-    const nlohmann::json density = {{"delta", d.delta},
-                                    {"density", d.density},
-                                    {"delta_unit", r.strain_unit},
-                                    {"density_unit", unit_ratio("1", r.strain_unit)}};
-    if (r.delay_method == DelayMethod::fitted_maxima) {
-      delta["model"] =
-          "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise";
-      delta["bias"] = r.delta_x_bias;
-      delta["sampling_distribution"] = density;
-    } else {
-      delta["model"] = "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)";
-      delta["prior"] = {{"kind", "uniform"}, {"range", {d.prior_low, d.prior_high}}};
-      delta["misfit_window"] = {d.window_low, d.window_high};
-      delta["misfit_samples"] = d.window_samples;
-      delta["force_noise_sigma"] = {{"value", d.noise_sigma}, {"unit", r.force_unit}};
-      delta["misfit_scale"] = {{"value", d.misfit_scale}, {"unit", r.force_unit}};
-      delta["correlation_length_samples"] = d.correlation;
-      delta["scale_at_map"] = {{"value", d.scale_at_map},
-                               {"unit", unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit))}};
-      delta["at_prior_bound"] = d.at_prior_bound;
-      delta["posterior"] = density;
-    }
-    j["delta_x"] = delta;
-  } else {
-    j["delta_x"] = nullptr;
-  }
+  j["delta_x"] = delay_json(r);
   j["delta_x_direct"] = optional_json(r.delta_x_direct);
   j["loading_phase_end"] = {{"value", r.loading_phase_end}, {"unit", r.strain_unit}};
-  const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
-    return nlohmann::json{{"white_sd", c.white}, {"walk_step_sd", c.walk}, {"unit", unit}};
-  };
-  j["uncertainty"] = {
-      {"method",
-       "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
-       "filtered curves, every replicate filtered, differentiated and fitted again"},
-      {"replicates", r.bootstrap_replicates},
-      {"failed_replicates", r.bootstrap_failed},
-      {"window", {r.bootstrap_window_low, r.bootstrap_window_high}},
-      {"window_unit", r.strain_unit},
-      {"noise",
-       {{"force", noise_json(r.noise_model.force, r.force_unit)},
-        {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
-        {"correlation", r.noise_model.correlation}}}};
+  j["uncertainty"] = uncertainty_json(r);
   j["Gamma"] = optional_json(r.Gamma);
   j["A_r"] = optional_json(r.A_r);
   j["alpha"] = {{"from_delta_over_x_p", optional_json(r.alpha.alpha)},
@@ -885,31 +925,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
                 {"A_r_band", {r.alpha.energy_ratio_band_low, r.alpha.energy_ratio_band_high}},
                 {"Gamma_in_band", optional_json(r.alpha.gamma_in_band)},
                 {"A_r_in_band", optional_json(r.alpha.energy_ratio_in_band)}};
-  if (r.mechanism) {
-    const auto& f = r.features;
-    nlohmann::json crack = nullptr;
-    if (f.crack)
-      crack = {{"height_over_l0", f.crack->height},
-               {"distance_to_plate_over_l0", f.crack->to_plate},
-               {"localisation", f.crack->localisation},
-               {"planes", f.crack->planes}};
-    // A rejected curve carries no class (a ductile-like one is rejected for being ductile-like).
-    j["mechanism"] = {
-        {"class", r.accepted ? nlohmann::json(to_string(r.mechanism->mechanism)) : nlohmann::json(nullptr)},
-        {"features_say", to_string(r.mechanism->mechanism)},
-        {"reason", r.mechanism->reason},
-        {"features",
-         {{"critical_strain_percent", optional_json(f.critical_strain_percent)},
-          {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
-          {"significant_force_maxima", f.force_maxima},
-          {"break_spread_over_x_c", optional_json(f.break_spread)},
-          {"post_peak_decay_over_x_c", optional_json(f.post_peak_decay)},
-          {"loading_undulation_over_F_c", optional_json(f.loading_undulation)},
-          {"crack", crack},
-          {"Gamma", optional_json(f.gamma)}}}};
-  } else {
-    j["mechanism"] = nullptr;
-  }
+  j["mechanism"] = mechanism_json(r);
   return j;
 }
 
