@@ -427,16 +427,19 @@ dem::Params RunConfig::dem_params(double sample_density) const {
   return p;
 }
 
-RunConfig parse_config(const std::string& toml_text, const std::string& source,
-                       const std::vector<std::string>& overrides) {
-  io::require_text(toml_text, source);
-  toml::table table;
+toml::table parse_toml(std::string_view text, const std::string& source) {
+  io::require_text(text, source);
   try {
-    table = toml::parse(toml_text, source);
+    return toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     throw InputError(fmt::format("{}:{}", source, e.source().begin.line), std::string(e.description()),
                      "fix the TOML syntax");
   }
+}
+
+RunConfig parse_config(const std::string& toml_text, const std::string& source,
+                       const std::vector<std::string>& overrides) {
+  toml::table table = parse_toml(toml_text, source);
   Origin origin{source, {}};
   for (const auto& assignment : overrides) origin.overridden.insert(apply_override(table, assignment));
   return from_table(table, origin);

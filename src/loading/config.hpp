@@ -3,12 +3,15 @@
 // JSON. Not: running anything (loading/run) or loading samples (sample/formats).
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dem/system.hpp"
@@ -75,6 +78,10 @@ struct RunConfig {
 
   dem::Params dem_params(double sample_density) const;
 };
+
+// A TOML document; InputError naming `source` and the line for a NUL byte or a syntax error. The
+// one TOML reader of run and scan configs.
+toml::table parse_toml(std::string_view text, const std::string& source);
 
 // Reads a TOML file and applies overrides "section.key=value" (a TOML value; a bare word is read as
 // a string). Unknown keys and out-of-range values throw InputError naming the file and key.

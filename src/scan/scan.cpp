@@ -120,27 +120,11 @@ LogRange read_range(const Section& grid, const std::string& key) {
 
 }  // namespace
 
-ScanConfig load_scan_config(const std::filesystem::path& file) {
-  const std::string source = file.string();
-  const std::string file_text = io::read_text_file(file, io::max_config_bytes);
-  io::require_text(file_text, source);
-  toml::table root;
-  try {
-    root = toml::parse(file_text, source);
-  } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("{}:{}", source, e.source().begin.line), std::string(e.description()),
-                     "fix the TOML syntax");
-  }
-  for (const auto& [key, value] : root) {
-    (void)value;
-    const std::string name(key.str());
-    if (name != "scan" && name != "sample" && name != "grid" && name != "points" && name != "rules")
-      throw InputError(source + ": " + name, "unknown section",
-                       "sections: [scan], [sample], [grid], [[points]], [rules]");
-  }
-  ScanConfig c;
-  c.file = file;
-  const auto folder = file.parent_path();
+namespace {
+
+// [scan]: the base run config (relative to the scan config's folder), the output folder, set.
+void read_scan_section(const toml::table& root, const std::string& source,
+                       const std::filesystem::path& folder, ScanConfig& c) {
   const Section scan(root, "scan", {"base", "output", "set"}, source);
   const std::string base = scan.text("base", "");
   if (base.empty())
@@ -159,6 +143,11 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
       c.set.push_back(*text);
     }
   }
+}
+
+// [sample]: keys that replace the base config's sample, as overrides.
+void read_sample_section(const toml::table& root, const std::string& source,
+                         const std::filesystem::path& folder, ScanConfig& c) {
   if (const auto* sample = root.get("sample")) {
     const auto* table = sample->as_table();
     if (table == nullptr) throw InputError(source + ": sample", "expects a table", "write [sample]");
@@ -178,6 +167,10 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
         if (!table->contains(other))
           c.sample.insert(c.sample.begin(), std::string("sample.") + other + "=\"\"");
   }
+}
+
+// [grid] and [[points]]: the (k_n, b_d) pairs, at least one and at most max_points.
+void read_points(const toml::table& root, const std::string& source, ScanConfig& c) {
   const Section grid(root, "grid", {"k_n", "b_d"}, source);
   if (grid.get("k_n") || grid.get("b_d")) {
     c.grid_k_n = read_range(grid, "k_n");
@@ -211,6 +204,10 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
     throw InputError(source,
                      fmt::format("{:g} points, more than the {} a scan folder holds", points, max_points),
                      "split the scan into several configs with their own [scan] output");
+}
+
+// [rules]: the per-point dt, ramp, stop strain and output interval.
+void read_rules(const toml::table& root, const std::string& source, ScanConfig& c) {
   const Section rules(root, "rules",
                       {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_fraction",
                        "ramp_min_steps", "ramp_max_steps", "max_strain", "max_strain_factor",
@@ -255,6 +252,26 @@ ScanConfig load_scan_config(const std::filesystem::path& file) {
   if (!(c.rows_to_first_break >= 10 && c.rows_to_first_break <= 1e6))
     throw InputError(rules.where("rows_to_first_break"), "must lie in [10, 1e6] rows",
                      "e.g. rows_to_first_break = 400");
+}
+
+}  // namespace
+
+ScanConfig load_scan_config(const std::filesystem::path& file) {
+  const std::string source = file.string();
+  const toml::table root = loading::parse_toml(io::read_text_file(file, io::max_config_bytes), source);
+  for (const auto& [key, value] : root) {
+    (void)value;
+    const std::string name(key.str());
+    if (name != "scan" && name != "sample" && name != "grid" && name != "points" && name != "rules")
+      throw InputError(source + ": " + name, "unknown section",
+                       "sections: [scan], [sample], [grid], [[points]], [rules]");
+  }
+  ScanConfig c;
+  c.file = file;
+  read_scan_section(root, source, file.parent_path(), c);
+  read_sample_section(root, source, file.parent_path(), c);
+  read_points(root, source, c);
+  read_rules(root, source, c);
   return c;
 }
 
