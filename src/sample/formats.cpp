@@ -185,8 +185,12 @@ io::VtkPolyData to_polydata(const Sample& sample) {
 // Dispatch
 
 Sample load_sample(const fs::path& path) {
-  const std::string text = io::read_text_file(path);
   const std::string source = path.string();
+  // A .vtp (binary since it is zlib-compressed) is refused for what it is, not for its NUL bytes.
+  if (sample_format_for_path(path) == SampleFormat::vtp)
+    throw InputError(source, "a .vtp file is a picture of a sample, not a sample",
+                     "load the sample file it was written from (own, LAMMPS data or LSMGeometry)");
+  const std::string text = io::read_text_file(path);
   const auto first_line = TextReader::trim(std::string_view(text).substr(0, text.find('\n')));
   Sample sample;
   if (first_line.starts_with("rupture-sample")) {
@@ -196,9 +200,6 @@ Sample load_sample(const fs::path& path) {
   } else if (sample_format_for_path(path) == SampleFormat::lammps ||
              text.find(" atoms\n") != std::string::npos) {
     sample = parse_lammps_data(text, source);
-  } else if (sample_format_for_path(path) == SampleFormat::vtp) {
-    throw InputError(source, "a .vtp file is a picture of a sample, not a sample",
-                     "load the sample file it was written from (own, LAMMPS data or LSMGeometry)");
   } else {
     throw InputError(source + ":1", "not a sample file rupture knows",
                      "give a rupture sample ('rupture-sample 1'), a LAMMPS data file (.data/.lmp) or an "
