@@ -140,38 +140,39 @@ std::string format_lammps_data(const Sample& sample, LammpsAtomStyle style) {
   return fmt::to_string(out);
 }
 
-Sample parse_lammps_data(std::string_view text, const std::string& source) {
-  // The first line is a free title (it may contain '#'); the rest has '#' comments.
-  const auto title = text.substr(0, text.find('\n'));
-  const bool written_by_rupture = title.starts_with(lammps_title);
-  TextReader in(text, source, '#', "see the LAMMPS data files rupture reads in docs/sample.md");
-  std::string_view line;
-  in.next(line);  // the title
+namespace {
 
+// The header of a LAMMPS data file: counts and box, up to the first section's header line.
+struct LammpsHeader {
   std::size_t atoms = 0, bonds = 0;
+  Box box;
+  std::string_view first_section;  // empty: no section at all
+};
+
+LammpsHeader read_lammps_header(TextReader& in) {
+  LammpsHeader h;
   bool have_atoms = false;
   std::array<bool, 3> have_bounds{};
-  Box box;
-  std::string_view section;  // the current section header line; empty at the end of the file
+  std::string_view line;
   while (in.next(line)) {
     if (starts_with_letter(line)) {
-      section = line;
+      h.first_section = line;
       break;
     }
     const auto words = TextReader::split(line);
     if (words.size() == 2 && words[1] == "atoms") {
-      atoms = in.count(words[0], "atom count");
+      h.atoms = in.count(words[0], "atom count");
       have_atoms = true;
     } else if (words.size() == 2 && words[1] == "bonds") {
-      bonds = in.count(words[0], "bond count");
+      h.bonds = in.count(words[0], "bond count");
     } else if (words.size() == 4 && words[2].size() == 3 && words[2].substr(1) == "lo" &&
                words[3].substr(1) == "hi") {
       const int axis = words[2][0] - 'x';
       if (axis < 0 || axis > 2) in.fail(fmt::format("unknown bounds keyword '{}'", excerpt(words[2])));
       const double lo = in.real(words[0], "lower bound"), hi = in.real(words[1], "upper bound");
       if (!(hi > lo)) in.fail(fmt::format("{} bounds {} {} are empty", words[2], lo, hi));
-      (axis == 0 ? box.lower.x : axis == 1 ? box.lower.y : box.lower.z) = lo;
-      (axis == 0 ? box.upper.x : axis == 1 ? box.upper.y : box.upper.z) = hi;
+      (axis == 0 ? h.box.lower.x : axis == 1 ? h.box.lower.y : h.box.lower.z) = lo;
+      (axis == 0 ? h.box.upper.x : axis == 1 ? h.box.upper.y : h.box.upper.z) = hi;
       have_bounds[static_cast<std::size_t>(axis)] = true;
     } else if (words.size() >= 4 && words[3] == "yz") {
       in.fail("triclinic boxes are not supported", "write the data file from an orthogonal box");
@@ -181,90 +182,117 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
   if (!have_atoms) in.fail("no 'N atoms' line in the header: this is not a LAMMPS data file");
   if (!(have_bounds[0] && have_bounds[1] && have_bounds[2]))
     in.fail("the header lacks one of the 'xlo xhi', 'ylo yhi', 'zlo zhi' lines");
+  return h;
+}
 
-  // Each section: a header line starting with a letter, then data lines up to the next header.
-  // Returns the next header, or an empty view at the end of the file.
-  const auto for_each_data_line = [&](auto&& use) -> std::string_view {
-    std::string_view data;
-    while (in.next(data)) {
-      if (starts_with_letter(data)) return data;
-      use(TextReader::split(data));
-    }
-    return {};
-  };
-  // LAMMPS atom-IDs are positive; the sample's id is the atom-ID - 1.
-  const auto sample_id = [&](std::string_view word, std::string_view what) {
-    const std::int64_t atom_id = in.integer(word, what);
-    if (atom_id < 1)
-      in.fail(fmt::format("{} {} is not positive", what, atom_id), "LAMMPS atom-IDs start at 1");
-    return atom_id - 1;
-  };
-  SampleAssembler build(1);
-  build.sample.box = box;
-  // The sample has one density: the atoms' common one, or their mass-weighted mean (g/mm^3).
+// A section's data lines (split into words) up to the next header line starting with a letter,
+// which it returns (an empty view at the end of the file).
+template <class Use>
+std::string_view for_each_data_line(TextReader& in, Use&& use) {
+  std::string_view data;
+  while (in.next(data)) {
+    if (starts_with_letter(data)) return data;
+    use(TextReader::split(data));
+  }
+  return {};
+}
+
+// LAMMPS atom-IDs are positive; the sample's id is the atom-ID - 1.
+std::int64_t sample_id(const TextReader& in, std::string_view word, std::string_view what) {
+  const std::int64_t atom_id = in.integer(word, what);
+  if (atom_id < 1) in.fail(fmt::format("{} {} is not positive", what, atom_id), "LAMMPS atom-IDs start at 1");
+  return atom_id - 1;
+}
+
+// What the Atoms section adds up to: the sample's one density is the atoms' common one, or their
+// mass-weighted mean (g/mm^3).
+struct AtomTotals {
   double mass = 0.0, volume = 0.0, common_density = -1.0;
   bool one_density = true;
+  std::size_t read = 0;
+};
+
+// The Atoms section, its layout from the style comment on its header line; returns the next header.
+std::string_view read_atoms(TextReader& in, bool written_by_rupture, SampleAssembler& build,
+                            AtomTotals& totals) {
+  const std::string_view header = in.raw_line();
+  const auto hash = header.find('#');
+  const auto style_text = hash == std::string_view::npos ? std::string_view{} : header.substr(hash + 1);
+  const AtomLayout layout = atom_layout(in, TextReader::split(style_text));
+  return for_each_data_line(in, [&](const std::vector<std::string_view>& words) {
+    if (words.size() != layout.columns && words.size() != layout.columns + 3)
+      in.fail(fmt::format("{} columns where atom style '{}' has {} (or {} with image flags)", words.size(),
+                          TextReader::trim(style_text), layout.columns, layout.columns + 3));
+    const auto column = [&](int k) { return words[static_cast<std::size_t>(k)]; };
+    const auto id = sample_id(in, column(layout.id), "atom-ID");
+    const double diameter = in.real(column(layout.diameter), "diameter");
+    if (!(diameter > 0.0))
+      in.fail(fmt::format("atom {} has diameter {}", id + 1, diameter), "give every atom a diameter > 0");
+    const double density = in.real(column(layout.density), "density");
+    // An integer molecule-ID where the layout expects one confirms the column order.
+    if (layout.molecule >= 0) in.integer(column(layout.molecule), "molecule-ID");
+    const auto type = in.integer(column(layout.type), "atom-type");
+    ParticleGroup group = ParticleGroup::free;
+    if (written_by_rupture) {
+      if (type < 1 || type > 3)
+        in.fail(fmt::format("atom type {} is not 1, 2 or 3 (free, bottom, top)", type));
+      group = static_cast<ParticleGroup>(type - 1);
+    }
+    const double radius = 0.5 * diameter;
+    build.add_particle(in, id,
+                       {in.real(column(layout.x), "x"), in.real(column(layout.x + 1), "y"),
+                        in.real(column(layout.x + 2), "z")},
+                       radius, group);
+    totals.volume += units::sphere_volume(radius);
+    totals.mass += density * units::sphere_volume(radius);
+    if (totals.common_density < 0.0) totals.common_density = density;
+    totals.one_density = totals.one_density && density == totals.common_density;
+    ++totals.read;
+  });
+}
+
+}  // namespace
+
+Sample parse_lammps_data(std::string_view text, const std::string& source) {
+  // The first line is a free title (it may contain '#'); the rest has '#' comments.
+  const auto title = text.substr(0, text.find('\n'));
+  const bool written_by_rupture = title.starts_with(lammps_title);
+  TextReader in(text, source, '#', "see the LAMMPS data files rupture reads in docs/sample.md");
+  std::string_view line;
+  in.next(line);  // the title
+  const LammpsHeader header = read_lammps_header(in);
+  SampleAssembler build(1);
+  build.sample.box = header.box;
+  AtomTotals atoms;
   bool have_atoms_section = false;
-  std::size_t atoms_read = 0, bonds_read = 0;
-  while (!section.empty()) {
+  std::size_t bonds_read = 0;
+  // Each section: a header line starting with a letter, then data lines up to the next header.
+  for (std::string_view section = header.first_section; !section.empty();) {
     const auto name = TextReader::split(section)[0];
     if (name == "Atoms") {
       have_atoms_section = true;
-      const std::string_view header = in.raw_line();
-      const auto hash = header.find('#');
-      const auto style_text = hash == std::string_view::npos ? std::string_view{} : header.substr(hash + 1);
-      const AtomLayout layout = atom_layout(in, TextReader::split(style_text));
-      section = for_each_data_line([&](const std::vector<std::string_view>& words) {
-        if (words.size() != layout.columns && words.size() != layout.columns + 3)
-          in.fail(fmt::format("{} columns where atom style '{}' has {} (or {} with image flags)",
-                              words.size(), TextReader::trim(style_text), layout.columns,
-                              layout.columns + 3));
-        const auto column = [&](int k) { return words[static_cast<std::size_t>(k)]; };
-        const auto id = sample_id(column(layout.id), "atom-ID");
-        const double diameter = in.real(column(layout.diameter), "diameter");
-        if (!(diameter > 0.0))
-          in.fail(fmt::format("atom {} has diameter {}", id + 1, diameter), "give every atom a diameter > 0");
-        const double density = in.real(column(layout.density), "density");
-        // An integer molecule-ID where the layout expects one confirms the column order.
-        if (layout.molecule >= 0) in.integer(column(layout.molecule), "molecule-ID");
-        const auto type = in.integer(column(layout.type), "atom-type");
-        ParticleGroup group = ParticleGroup::free;
-        if (written_by_rupture) {
-          if (type < 1 || type > 3)
-            in.fail(fmt::format("atom type {} is not 1, 2 or 3 (free, bottom, top)", type));
-          group = static_cast<ParticleGroup>(type - 1);
-        }
-        const double radius = 0.5 * diameter;
-        build.add_particle(in, id,
-                           {in.real(column(layout.x), "x"), in.real(column(layout.x + 1), "y"),
-                            in.real(column(layout.x + 2), "z")},
-                           radius, group);
-        volume += units::sphere_volume(radius);
-        mass += density * units::sphere_volume(radius);
-        if (common_density < 0.0) common_density = density;
-        one_density = one_density && density == common_density;
-        ++atoms_read;
-      });
+      section = read_atoms(in, written_by_rupture, build, atoms);
     } else if (name == "Bonds") {
       if (!have_atoms_section) in.fail("the Bonds section comes before Atoms", "put the Atoms section first");
-      section = for_each_data_line([&](const std::vector<std::string_view>& words) {
+      section = for_each_data_line(in, [&](const std::vector<std::string_view>& words) {
         in.expect_columns(words, 4, "bond-ID bond-type atom1 atom2");
-        build.add_bond(in, sample_id(words[2], "atom1"), sample_id(words[3], "atom2"));
+        build.add_bond(in, sample_id(in, words[2], "atom1"), sample_id(in, words[3], "atom2"));
         ++bonds_read;
       });
     } else {
-      section = for_each_data_line([](const auto&) {});  // Masses, Velocities, coefficients, ...
+      section = for_each_data_line(in, [](const auto&) {});  // Masses, Velocities, coefficients, ...
     }
   }
-  if (atoms_read != atoms)
-    in.fail(fmt::format("the file has {} atom lines but its header says {} atoms", atoms_read, atoms),
+  if (atoms.read != header.atoms)
+    in.fail(fmt::format("the file has {} atom lines but its header says {} atoms", atoms.read, header.atoms),
             "the file is truncated or its header is wrong");
-  if (bonds_read != bonds)
-    in.fail(fmt::format("the file has {} bond lines but its header says {} bonds", bonds_read, bonds),
+  if (bonds_read != header.bonds)
+    in.fail(fmt::format("the file has {} bond lines but its header says {} bonds", bonds_read, header.bonds),
             "the file is truncated or its header is wrong");
   Sample sample = build.finish();
-  if (!(mass > 0.0)) in.fail("the atoms have no positive density", "give each atom its density in g/mm^3");
-  sample.density = one_density ? common_density : mass / volume;
+  if (!(atoms.mass > 0.0))
+    in.fail("the atoms have no positive density", "give each atom its density in g/mm^3");
+  sample.density = atoms.one_density ? atoms.common_density : atoms.mass / atoms.volume;
   sample.provenance.push_back(fmt::format("imported from LAMMPS data file {}", source));
   if (!written_by_rupture) {
     // Another workflow's box is often larger than the packing (a margin, a shrink-wrapped boundary):
