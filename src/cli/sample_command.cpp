@@ -46,17 +46,65 @@ nlohmann::json provenance_json(const std::string& command) {
 
 }  // namespace
 
-void add_sample_command(CLI::App& app, int& /*exit_code*/) {
-  auto* sample_cmd = app.add_subcommand("sample", "Make, inspect and convert bonded particle samples");
-  sample_cmd->require_subcommand(1);
+namespace {
 
-  // ---- generate
-  struct GenerateOptions {
-    std::string preset, out, format;
-    std::uint64_t seed = 1;
-    PackingParams params;
-    bool json = false;
-  };
+struct GenerateOptions {
+  std::string preset, out, format;
+  std::uint64_t seed = 1;
+  PackingParams params;
+  bool json = false;
+};
+
+// Generates, saves and reports a sample with `params` (the preset's, with the options given).
+void run_generate(const GenerateOptions& options, const PackingParams& params) {
+  const SampleFormat format =
+      options.format.empty() ? sample_format_for_path(options.out) : sample_format_from_name(options.format);
+
+  GenerationReport report;
+  const auto start = std::chrono::steady_clock::now();
+  Sample sample = generate_sample(params, options.seed, &report);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!options.preset.empty())
+    sample.provenance.insert(sample.provenance.begin() + 1, "preset: " + options.preset);
+  save_sample(sample, options.out, format);
+
+  const SampleStats stats = compute_stats(sample);
+  if (options.json) {
+    auto doc = provenance_json("sample generate");
+    doc["inputs"] = {{"preset", options.preset},
+                     {"seed", options.seed},
+                     {"out", options.out},
+                     {"format", sample_format_name(format)},
+                     {"box", {params.size.x, params.size.y, params.size.z}},
+                     {"r_min", params.r_min},
+                     {"r_max", params.r_max},
+                     {"r_median", params.r_median},
+                     {"r_sigma", params.r_sigma},
+                     {"bond_tolerance", params.bond_tolerance},
+                     {"fill_rate", params.min_fill_rate},
+                     {"density", params.density},
+                     {"units", {{"box", "mm"}, {"radii", "mm"}, {"density", "g/mm^3"}}}};
+    doc["sample"] = to_json(stats);
+    doc["generation"] = {{"drawn_placed", report.drawn_placed},
+                         {"gap_filled", report.gap_filled},
+                         {"draws", report.draws},
+                         {"positions_tried", report.positions_tried},
+                         {"solid_fraction_after_drawn", report.solid_fraction_drawn},
+                         {"seconds", seconds}};
+    fmt::print("{}\n", doc.dump(2));
+  } else {
+    print_stats(fmt::format("sample {} ({} format, seed {}, {:.2f} s)", options.out,
+                            sample_format_name(format), options.seed, seconds),
+                stats, sample);
+    fmt::print(
+        "  generation         {} drawn radii placed of {} drawn (solid fraction {:.4f}), then {} gap "
+        "fillers\n",
+        report.drawn_placed, report.draws, report.solid_fraction_drawn, report.gap_filled);
+  }
+}
+
+// `rupture sample generate`: a new packing from a preset or explicit box and radii.
+void add_generate(CLI::App* sample_cmd) {
   auto gen = std::make_shared<GenerateOptions>();
   auto* generate = sample_cmd->add_subcommand(
       "generate", "Generate a dense random bonded packing (GenGeo-style insertion)");
@@ -103,53 +151,12 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
     take(tolerance, params.bond_tolerance, gen->params.bond_tolerance);
     take(fill, params.min_fill_rate, gen->params.min_fill_rate);
     take(density, params.density, gen->params.density);
-    const SampleFormat format =
-        gen->format.empty() ? sample_format_for_path(gen->out) : sample_format_from_name(gen->format);
-
-    GenerationReport report;
-    const auto start = std::chrono::steady_clock::now();
-    Sample sample = generate_sample(params, gen->seed, &report);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!gen->preset.empty())
-      sample.provenance.insert(sample.provenance.begin() + 1, "preset: " + gen->preset);
-    save_sample(sample, gen->out, format);
-
-    const SampleStats stats = compute_stats(sample);
-    if (gen->json) {
-      auto doc = provenance_json("sample generate");
-      doc["inputs"] = {{"preset", gen->preset},
-                       {"seed", gen->seed},
-                       {"out", gen->out},
-                       {"format", sample_format_name(format)},
-                       {"box", {params.size.x, params.size.y, params.size.z}},
-                       {"r_min", params.r_min},
-                       {"r_max", params.r_max},
-                       {"r_median", params.r_median},
-                       {"r_sigma", params.r_sigma},
-                       {"bond_tolerance", params.bond_tolerance},
-                       {"fill_rate", params.min_fill_rate},
-                       {"density", params.density},
-                       {"units", {{"box", "mm"}, {"radii", "mm"}, {"density", "g/mm^3"}}}};
-      doc["sample"] = to_json(stats);
-      doc["generation"] = {{"drawn_placed", report.drawn_placed},
-                           {"gap_filled", report.gap_filled},
-                           {"draws", report.draws},
-                           {"positions_tried", report.positions_tried},
-                           {"solid_fraction_after_drawn", report.solid_fraction_drawn},
-                           {"seconds", seconds}};
-      fmt::print("{}\n", doc.dump(2));
-    } else {
-      print_stats(fmt::format("sample {} ({} format, seed {}, {:.2f} s)", gen->out,
-                              sample_format_name(format), gen->seed, seconds),
-                  stats, sample);
-      fmt::print(
-          "  generation         {} drawn radii placed of {} drawn (solid fraction {:.4f}), then {} gap "
-          "fillers\n",
-          report.drawn_placed, report.draws, report.solid_fraction_drawn, report.gap_filled);
-    }
+    run_generate(*gen, params);
   });
+}
 
-  // ---- info
+// `rupture sample info`: a sample's statistics.
+void add_info(CLI::App* sample_cmd) {
   auto info_file = std::make_shared<std::string>();
   auto info_json = std::make_shared<bool>(false);
   auto* info = sample_cmd->add_subcommand("info", "Print a sample's statistics (any format rupture reads)");
@@ -167,8 +174,10 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
       print_stats("sample " + *info_file, stats, sample);
     }
   });
+}
 
-  // ---- convert
+// `rupture sample convert`: a sample from one format into another.
+void add_convert(CLI::App* sample_cmd) {
   struct ConvertOptions {
     std::string in, out, format;
   };
@@ -187,6 +196,16 @@ void add_sample_command(CLI::App& app, int& /*exit_code*/) {
     fmt::print("wrote {} ({} format): {} particles, {} bonds\n", conv->out, sample_format_name(format),
                sample.size(), sample.bonds.size());
   });
+}
+
+}  // namespace
+
+void add_sample_command(CLI::App& app, int& /*exit_code*/) {
+  auto* sample_cmd = app.add_subcommand("sample", "Make, inspect and convert bonded particle samples");
+  sample_cmd->require_subcommand(1);
+  add_generate(sample_cmd);
+  add_info(sample_cmd);
+  add_convert(sample_cmd);
 }
 
 }  // namespace rupture::cli
