@@ -11,6 +11,9 @@ namespace rupture::dem {
 
 namespace {
 
+// One function on purpose (85 lines): the step's hot loop, with bonds, contacts, glue and the
+// half-kick in one sweep over the particles; split, the compiler no longer keeps the sums in
+// registers across the parts.
 template <bool damped>
 void force_pass_impl(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
                      const NeighbourList& neighbours, BreakLedger& breaks, const Params& params,

@@ -10,7 +10,9 @@
 namespace rupture::dem {
 
 // Cells no smaller than the largest cutoff (2 r_max + skin); particles binned by a counting sort in
-// storage order; each particle's candidates visited in a fixed cell order.
+// storage order; each particle's candidates visited in a fixed cell order. One pass over the
+// particles on purpose (93 lines): after failure it runs hundreds of times per run, and the binning
+// and the candidate sweep share its buffers.
 void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double max_radius, bool parallel) {
   const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
   const auto& x = p.x;

@@ -122,6 +122,8 @@ Key choice_key(std::string section, std::string name, std::string help, std::str
 
 const Range density_range{min_plausible_density, max_plausible_density};
 
+// The table of every key (150 lines, one entry per key): the single place for key, type, unit,
+// default, range and help, which parsing, --help-config and to_json all read.
 const std::vector<Key>& schema() {
   static const std::vector<Key> keys = [] {
     std::vector<Key> k;
