@@ -139,6 +139,35 @@ std::optional<DataBlock> analysed_rate(const nlohmann::json& analysis, const std
                    {std::move(grid), std::move(rate)}};
 }
 
+// The lower panel of the loading figure: δ_x's sampling density (fitted maxima) or posterior (l1
+// shift) from analysis.json, over its 95 % interval with the interval's width on each side.
+void add_delay_panel(Figure& figure, const nlohmann::json& delta) {
+  // fitted-maxima: the bootstrap's sampling distribution; shift-l1: the Bayesian posterior.
+  const bool sampled = delta.contains("sampling_distribution");
+  const auto& posterior = sampled ? delta.at("sampling_distribution") : delta.at("posterior");
+  const std::string what = sampled ? "sampling density (bootstrap)" : "posterior density";
+  const std::string unit = posterior.at("delta_unit").get<std::string>();
+  const std::string density_unit = posterior.at("density_unit").get<std::string>();
+  figure.blocks.push_back({what + " of the delay delta_x",
+                           {fmt::format("delta_x[{}]", unit), fmt::format("density[{}]", density_unit)},
+                           {posterior.at("delta").get<std::vector<double>>(),
+                            posterior.at("density").get<std::vector<double>>()}});
+  Panel panel;
+  panel.title = fmt::format("Delay between the ℰ and F maxima: δ_x = {:.3g} ± {:.2g} {}",
+                            delta.at("mean").get<double>(), delta.at("sd").get<double>(), unit);
+  panel.xlabel = fmt::format("delay δ_x [{}]", unit);
+  panel.ylabel = fmt::format("{} [{}]", what, density_unit);
+  panel.yrange = "[0:*]";
+  // The posterior grid spans the whole prior; show the 95 % interval with its own width on each side.
+  const double low = delta.at("ci95").at(0).get<double>(), high = delta.at("ci95").at(1).get<double>();
+  if (high > low) panel.xrange = fmt::format("[{}:{}]", low - (high - low), high + (high - low));
+  panel.series = {{.block = figure.blocks.size() - 1,
+                   .title = sampled ? "bootstrap replicates of δ_x" : "posterior p(δ_x | F, ℰ)"}};
+  panel.markers = {{delta.at("map").get<double>(), sampled ? "δ_x" : "MAP"}};
+  figure.panels.push_back(std::move(panel));
+  figure.height = 1100;
+}
+
 Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::path& analysis_file) {
   const std::size_t strain_column = curves.require("strain");
   const auto& x = curves.columns[strain_column];
@@ -188,33 +217,8 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     figure.blocks.push_back(std::move(*analysed));
     figure.panels.push_back(loading_panel(1, 1, strain_field, std::move(markers)));
   }
-  if (!analysis.is_null() && analysis.contains("delta_x") && !analysis["delta_x"].is_null()) {
-    const auto& delta = analysis["delta_x"];
-    // fitted-maxima: the bootstrap's sampling distribution; shift-l1: the Bayesian posterior.
-    const bool sampled = delta.contains("sampling_distribution");
-    const auto& posterior = sampled ? delta.at("sampling_distribution") : delta.at("posterior");
-    const std::string what = sampled ? "sampling density (bootstrap)" : "posterior density";
-    const std::string unit = posterior.at("delta_unit").get<std::string>();
-    const std::string density_unit = posterior.at("density_unit").get<std::string>();
-    figure.blocks.push_back({what + " of the delay delta_x",
-                             {fmt::format("delta_x[{}]", unit), fmt::format("density[{}]", density_unit)},
-                             {posterior.at("delta").get<std::vector<double>>(),
-                              posterior.at("density").get<std::vector<double>>()}});
-    Panel panel;
-    panel.title = fmt::format("Delay between the ℰ and F maxima: δ_x = {:.3g} ± {:.2g} {}",
-                              delta.at("mean").get<double>(), delta.at("sd").get<double>(), unit);
-    panel.xlabel = fmt::format("delay δ_x [{}]", unit);
-    panel.ylabel = fmt::format("{} [{}]", what, density_unit);
-    panel.yrange = "[0:*]";
-    // The posterior grid spans the whole prior; show the 95 % interval with its own width on each side.
-    const double low = delta.at("ci95").at(0).get<double>(), high = delta.at("ci95").at(1).get<double>();
-    if (high > low) panel.xrange = fmt::format("[{}:{}]", low - (high - low), high + (high - low));
-    panel.series = {{.block = figure.blocks.size() - 1,
-                     .title = sampled ? "bootstrap replicates of δ_x" : "posterior p(δ_x | F, ℰ)"}};
-    panel.markers = {{delta.at("map").get<double>(), sampled ? "δ_x" : "MAP"}};
-    figure.panels.push_back(std::move(panel));
-    figure.height = 1100;
-  }
+  if (!analysis.is_null() && analysis.contains("delta_x") && !analysis["delta_x"].is_null())
+    add_delay_panel(figure, analysis["delta_x"]);
   figure.caption =
       "Loading curves: force on the top plate F, elastic energy E_e and energy rate ℰ = dE_e/dx against "
       "strain, each over its maximum";
