@@ -136,16 +136,98 @@ void add_curves(CLI::App& fbm_app) {
   });
 }
 
+struct SimulateOptions {
+  std::string spec = "uniform", sharing = "els", control, out, bursts;
+  bool json = false;
+  std::size_t fibers = 1000000, points = 2001;
+  std::uint64_t seed = 1;
+};
+
+// Draws the bundle, runs it under strain or load control, writes the curve (and bursts) and prints
+// the summary.
+void run_simulate(const SimulateOptions& o) {
+  const auto dist = load_distribution(o.spec);
+  const std::string control = o.control.empty() ? (o.sharing == "lls" ? "load" : "strain") : o.control;
+  if (o.sharing == "lls" && control == "strain")
+    throw InputError("--control", "LLS is defined under load control only (a rigid clamp makes it ELS)",
+                     "use --control load with --sharing lls");
+  if (control == "strain" && !o.bursts.empty())
+    throw InputError("--bursts", "bursts exist only under load control", "add --control load");
+  const auto thresholds = fbm::draw_thresholds(*dist, o.fibers, o.seed);
+  fbm::BundleCurve result;
+  std::optional<fbm::LoadControlled> load;
+  if (control == "strain") {
+    result = fbm::strain_controlled(thresholds, o.points);
+  } else {
+    load = o.sharing == "els" ? fbm::load_controlled_els(thresholds, o.points)
+                              : fbm::load_controlled_lls(thresholds, o.points);
+    result = load->result;
+  }
+  const std::string command =
+      fmt::format("fbm simulate --dist {} --fibers {} --seed {} --sharing {} --control {} --points {}",
+                  dist->spec(), o.fibers, o.seed, o.sharing, control, o.points);
+  const std::string units = std::string(units_note) + " (force per fiber F/N)";
+  if (!o.out.empty()) {
+    std::vector<std::string> comments{fmt::format("rupture {}", version_string), command,
+                                      "finite bundle, " + units};
+    if (control == "load")
+      comments.push_back(
+          "rows: the stable states before each burst, interpolated onto equally spaced strains up to x_c");
+    if (o.sharing == "lls") comments.push_back("LLS: strain = mean strain of the intact fibers");
+    io::write_file_atomically(o.out, csv_text(result.curve, comments));
+  }
+  std::string bursts_path = o.bursts;
+  if (load && bursts_path.empty() && !o.out.empty()) {
+    const fs::path out(o.out);
+    bursts_path = (out.parent_path() / (out.stem().string() + "_bursts.csv")).string();
+  }
+  if (load && !bursts_path.empty()) {
+    std::string text = fmt::format(
+        "# rupture {}\n# {}\n# bursts (avalanches) of the quasi-static load-controlled run; "
+        "the final burst ({} fibers) that breaks the rest is not counted\n",
+        version_string, command, load->final_burst);
+    text += io::format_csv_header({"size[fibers]", "count[1]"});
+    for (const auto& [size, count] : load->burst_counts)
+      text += io::format_csv_row({static_cast<double>(size), static_cast<double>(count)});
+    io::write_file_atomically(bursts_path, text);
+  }
+  json summary{{"version", version_string},
+               {"command", "fbm simulate"},
+               {"inputs",
+                {{"dist", dist->spec()},
+                 {"fibers", o.fibers},
+                 {"seed", o.seed},
+                 {"sharing", o.sharing},
+                 {"control", control},
+                 {"points", o.points}}},
+               {"units", units},
+               {"curve_file", o.out.empty() ? json(nullptr) : json(o.out)}};
+  summary.update(fbm::to_json(result.measured));
+  // The N -> infinity ELS values, for comparison with the measured ones.
+  if (const auto* continuous = dynamic_cast<const fbm::ContinuousDistribution*>(dist.get()))
+    summary["els_theory"] = fbm::to_json(fbm::ElsTheory(*continuous).characteristics());
+  if (load) {
+    std::size_t bursts = 0;
+    for (const auto& [size, count] : load->burst_counts) bursts += count;
+    summary["bursts"] = bursts;
+    summary["final_burst"] = load->final_burst;
+    summary["bursts_file"] = bursts_path.empty() ? json(nullptr) : json(bursts_path);
+  }
+  if (o.json) {
+    fmt::print("{}\n", summary.dump(2));
+  } else {
+    fmt::print("finite bundle, N = {}, seed {}, {} sharing, {} control, dist {}\n{}\n{}", o.fibers, o.seed,
+               o.sharing, control, dist->spec(), units, characteristics_table(result.measured));
+    if (load)
+      fmt::print("  {} bursts before the final one, which broke {} fibers\n",
+                 summary["bursts"].get<std::size_t>(), load->final_burst);
+  }
+}
+
 void add_simulate(CLI::App& fbm_app) {
   auto* app =
       fbm_app.add_subcommand("simulate", "Simulate a finite bundle (strain- or load-controlled, ELS or LLS)");
-  struct Options {
-    std::string spec = "uniform", sharing = "els", control, out, bursts;
-    bool json = false;
-    std::size_t fibers = 1000000, points = 2001;
-    std::uint64_t seed = 1;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<SimulateOptions>();
   app->add_option("--dist", o->spec, "Threshold distribution (see `fbm theory --help`)")
       ->capture_default_str();
   app->add_option("--fibers", o->fibers, "Number of fibers N")
@@ -166,84 +248,7 @@ void add_simulate(CLI::App& fbm_app) {
   app->add_option("--points", o->points, "At most this many rows in the CSV curve")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{3}, std::size_t{100000000}));
-  app->callback([o] {
-    const auto dist = load_distribution(o->spec);
-    const std::string control = o->control.empty() ? (o->sharing == "lls" ? "load" : "strain") : o->control;
-    if (o->sharing == "lls" && control == "strain")
-      throw InputError("--control", "LLS is defined under load control only (a rigid clamp makes it ELS)",
-                       "use --control load with --sharing lls");
-    if (control == "strain" && !o->bursts.empty())
-      throw InputError("--bursts", "bursts exist only under load control", "add --control load");
-    const auto thresholds = fbm::draw_thresholds(*dist, o->fibers, o->seed);
-    fbm::BundleCurve result;
-    std::optional<fbm::LoadControlled> load;
-    if (control == "strain") {
-      result = fbm::strain_controlled(thresholds, o->points);
-    } else {
-      load = o->sharing == "els" ? fbm::load_controlled_els(thresholds, o->points)
-                                 : fbm::load_controlled_lls(thresholds, o->points);
-      result = load->result;
-    }
-    const std::string command =
-        fmt::format("fbm simulate --dist {} --fibers {} --seed {} --sharing {} --control {} --points {}",
-                    dist->spec(), o->fibers, o->seed, o->sharing, control, o->points);
-    const std::string units = std::string(units_note) + " (force per fiber F/N)";
-    if (!o->out.empty()) {
-      std::vector<std::string> comments{fmt::format("rupture {}", version_string), command,
-                                        "finite bundle, " + units};
-      if (control == "load")
-        comments.push_back(
-            "rows: the stable states before each burst, interpolated onto equally spaced strains up to x_c");
-      if (o->sharing == "lls") comments.push_back("LLS: strain = mean strain of the intact fibers");
-      io::write_file_atomically(o->out, csv_text(result.curve, comments));
-    }
-    std::string bursts_path = o->bursts;
-    if (load && bursts_path.empty() && !o->out.empty()) {
-      const fs::path out(o->out);
-      bursts_path = (out.parent_path() / (out.stem().string() + "_bursts.csv")).string();
-    }
-    if (load && !bursts_path.empty()) {
-      std::string text = fmt::format(
-          "# rupture {}\n# {}\n# bursts (avalanches) of the quasi-static load-controlled run; "
-          "the final burst ({} fibers) that breaks the rest is not counted\n",
-          version_string, command, load->final_burst);
-      text += io::format_csv_header({"size[fibers]", "count[1]"});
-      for (const auto& [size, count] : load->burst_counts)
-        text += io::format_csv_row({static_cast<double>(size), static_cast<double>(count)});
-      io::write_file_atomically(bursts_path, text);
-    }
-    json summary{{"version", version_string},
-                 {"command", "fbm simulate"},
-                 {"inputs",
-                  {{"dist", dist->spec()},
-                   {"fibers", o->fibers},
-                   {"seed", o->seed},
-                   {"sharing", o->sharing},
-                   {"control", control},
-                   {"points", o->points}}},
-                 {"units", units},
-                 {"curve_file", o->out.empty() ? json(nullptr) : json(o->out)}};
-    summary.update(fbm::to_json(result.measured));
-    // The N -> infinity ELS values, for comparison with the measured ones.
-    if (const auto* continuous = dynamic_cast<const fbm::ContinuousDistribution*>(dist.get()))
-      summary["els_theory"] = fbm::to_json(fbm::ElsTheory(*continuous).characteristics());
-    if (load) {
-      std::size_t bursts = 0;
-      for (const auto& [size, count] : load->burst_counts) bursts += count;
-      summary["bursts"] = bursts;
-      summary["final_burst"] = load->final_burst;
-      summary["bursts_file"] = bursts_path.empty() ? json(nullptr) : json(bursts_path);
-    }
-    if (o->json) {
-      fmt::print("{}\n", summary.dump(2));
-    } else {
-      fmt::print("finite bundle, N = {}, seed {}, {} sharing, {} control, dist {}\n{}\n{}", o->fibers,
-                 o->seed, o->sharing, control, dist->spec(), units, characteristics_table(result.measured));
-      if (load)
-        fmt::print("  {} bursts before the final one, which broke {} fibers\n",
-                   summary["bursts"].get<std::size_t>(), load->final_burst);
-    }
-  });
+  app->callback([o] { run_simulate(*o); });
 }
 
 }  // namespace
