@@ -127,6 +127,61 @@ std::string interval(const analysis::Interval& i) { return fmt::format("[{:.6g},
 
 }  // namespace
 
+// The live warning: on stdout, or on stderr when --json keeps stdout for the document.
+void print_warning(const analysis::Warning& warning, const analysis::CurveColumns& columns, bool json) {
+  std::FILE* live = json ? stderr : stdout;  // --json keeps stdout for the document
+  fmt::print(live,
+             "WARNING at strain {:.6g} {}: energy-rate maximum passed (x_p = {:.6g} ± {:.2g} {}) while the "
+             "force "
+             "still rises; predicted x_c in {} {}, E_max in {} {} (FBM, 0 <= alpha <= 5)\n",
+             warning.strain, columns.strain_unit, warning.x_p, warning.x_p_error, columns.strain_unit,
+             interval(warning.x_c), columns.strain_unit, interval(warning.E_max), columns.energy_unit);
+  if (!warning.in_time) {
+    fmt::print(live,
+               "the rows are too far apart to warn in time: this warning comes after the earliest predicted "
+               "x_c; "
+               "rows at most {:.3g} {} apart would have warned before it\n",
+               warning.max_row_spacing, columns.strain_unit);
+  }
+  std::fflush(live);
+}
+
+// The outcome at the end: one JSON document, or lines of text.
+void print_outcome(const MonitorCommandOptions& options, const analysis::Monitor& monitor,
+                   const analysis::CurveColumns& columns, const std::string& source) {
+  const auto s = monitor.summary();
+  if (options.json) {
+    nlohmann::json j = {
+        {"tool", "rupture monitor"},
+        {"version", version_string},
+        {"inputs",
+         {{"file", options.file},
+          {"window", options.monitor.window},
+          {"drop", options.monitor.drop},
+          {"confirm", options.monitor.confirm},
+          {"alpha_range", {options.monitor.alpha_low, options.monitor.alpha_high}}}},
+        {"units",
+         {{"strain", columns.strain_unit}, {"force", columns.force_unit}, {"energy", columns.energy_unit}}}};
+    j.update(analysis::to_json(s));
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("{} samples read from {}\n", s.samples, source);
+  if (!s.warning) {
+    fmt::print("no warning: {}\n", s.force_peaked_before_warning
+                                       ? "the force peaked before an energy-rate maximum was confirmed"
+                                       : "no energy-rate maximum was confirmed");
+  }
+  if (s.x_c) fmt::print("observed x_c = {:.6g} {}\n", *s.x_c, columns.strain_unit);
+  if (s.lead) {
+    fmt::print("lead x_c - x_warning = {:.6g} {}; x_c prediction {}\n", *s.lead, columns.strain_unit,
+               *s.x_c_held ? "held" : "missed");
+  }
+  if (s.E_max_held)
+    fmt::print("observed E_max = {:.6g} {}; E_max prediction {}\n", *s.E_max, columns.energy_unit,
+               *s.E_max_held ? "held" : "missed");
+}
+
 void add_monitor_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<MonitorCommandOptions>();
   auto* cmd =
@@ -170,58 +225,11 @@ void add_monitor_command(CLI::App& app, int& exit_code) {
       const double f = o->columns.force_scale * row[columns->force];
       const double e = o->columns.energy_scale * row[columns->energy];
       if (const auto w = monitor->add_point(x, f, e)) {
-        std::FILE* live = o->json ? stderr : stdout;  // --json keeps stdout for the document
-        fmt::print(
-            live,
-            "WARNING at strain {:.6g} {}: energy-rate maximum passed (x_p = {:.6g} ± {:.2g} {}) while the "
-            "force "
-            "still rises; predicted x_c in {} {}, E_max in {} {} (FBM, 0 <= alpha <= 5)\n",
-            w->strain, columns->strain_unit, w->x_p, w->x_p_error, columns->strain_unit, interval(w->x_c),
-            columns->strain_unit, interval(w->E_max), columns->energy_unit);
-        if (!w->in_time) {
-          fmt::print(
-              live,
-              "the rows are too far apart to warn in time: this warning comes after the earliest predicted "
-              "x_c; "
-              "rows at most {:.3g} {} apart would have warned before it\n",
-              w->max_row_spacing, columns->strain_unit);
-        }
-        std::fflush(live);
+        print_warning(*w, *columns, o->json);
       }
     }
     if (!columns) columns = analysis::find_curve_columns(csv->header(), o->columns);  // a header, no rows
-    const auto s = monitor->summary();
-    if (o->json) {
-      nlohmann::json j = {{"tool", "rupture monitor"},
-                          {"version", version_string},
-                          {"inputs",
-                           {{"file", o->file},
-                            {"window", o->monitor.window},
-                            {"drop", o->monitor.drop},
-                            {"confirm", o->monitor.confirm},
-                            {"alpha_range", {o->monitor.alpha_low, o->monitor.alpha_high}}}},
-                          {"units",
-                           {{"strain", columns->strain_unit},
-                            {"force", columns->force_unit},
-                            {"energy", columns->energy_unit}}}};
-      j.update(analysis::to_json(s));
-      fmt::print("{}\n", j.dump(2));
-      return;
-    }
-    fmt::print("{} samples read from {}\n", s.samples, input.source());
-    if (!s.warning) {
-      fmt::print("no warning: {}\n", s.force_peaked_before_warning
-                                         ? "the force peaked before an energy-rate maximum was confirmed"
-                                         : "no energy-rate maximum was confirmed");
-    }
-    if (s.x_c) fmt::print("observed x_c = {:.6g} {}\n", *s.x_c, columns->strain_unit);
-    if (s.lead) {
-      fmt::print("lead x_c - x_warning = {:.6g} {}; x_c prediction {}\n", *s.lead, columns->strain_unit,
-                 *s.x_c_held ? "held" : "missed");
-    }
-    if (s.E_max_held)
-      fmt::print("observed E_max = {:.6g} {}; E_max prediction {}\n", *s.E_max, columns->energy_unit,
-                 *s.E_max_held ? "held" : "missed");
+    print_outcome(*o, *monitor, *columns, input.source());
     (void)exit_code;
   });
 }
