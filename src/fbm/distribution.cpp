@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <boost/math/distributions/uniform.hpp>
 #include <boost/math/distributions/weibull.hpp>
-#include <charconv>
 #include <cmath>
 #include <map>
 
 #include "core/error.hpp"
+#include "core/tokens.hpp"
 
 namespace rupture::fbm {
 
@@ -19,18 +19,13 @@ constexpr const char* dist_option = "--dist";
 constexpr const char* dist_forms =
     "use uniform[:a=A,b=B], powerlaw:alpha=A, weibull:k=K[,lambda=L] or file:PATH";
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+using tokens::trim;
 
 bool parse_number(std::string_view text, double& value) {
-  text = trim(text);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, value);
-  return !text.empty() && result.ec == std::errc() && result.ptr == end && std::isfinite(value);
+  const auto parsed = tokens::number<double>(trim(text));
+  if (!parsed || !std::isfinite(*parsed)) return false;
+  value = *parsed;
+  return true;
 }
 
 // "k=2,lambda=1" -> {k: 2, lambda: 1}; every key must be in `allowed`.

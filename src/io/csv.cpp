@@ -2,49 +2,22 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-
 #include "core/error.hpp"
+#include "core/tokens.hpp"
 #include "io/atomic_file.hpp"
 
 namespace rupture::io {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+using tokens::trim;
 
-// Splits one line into `fields` (views into `line`): on commas, or on runs of spaces and tabs.
+// Splits one line into `fields` (views into `line`): on commas, or on runs of blanks.
 void split_fields(std::string_view line, bool comma_separated, std::vector<std::string_view>& fields) {
-  fields.clear();
-  if (comma_separated) {
-    std::size_t start = 0;
-    for (;;) {
-      const std::size_t comma = line.find(',', start);
-      fields.push_back(
-          trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-      if (comma == std::string_view::npos) break;
-      start = comma + 1;
-    }
-    return;
-  }
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    if (i > start) fields.push_back(line.substr(start, i - start));
-  }
-}
-
-bool parse_double(std::string_view text, double& value) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const auto* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, value);
-  return result.ec == std::errc() && result.ptr == end && !text.empty();
+  if (comma_separated)
+    tokens::split_commas(line, fields);
+  else
+    tokens::split_words(line, fields);
 }
 
 }  // namespace
@@ -102,9 +75,8 @@ void CsvLineReader::set_header(std::string_view line, std::size_t number) {
 
 bool CsvLineReader::all_numbers(std::string_view line) {
   split_fields(line, line.find(',') != std::string_view::npos, fields_);
-  double value;
   for (auto f : fields_)
-    if (!parse_double(f, value)) return false;
+    if (!tokens::number<double>(f)) return false;
   return !fields_.empty();
 }
 
@@ -142,12 +114,15 @@ bool CsvLineReader::add_line(std::string_view text) {
                      fmt::format("{} fields where the header has {}", fields_.size(), table_.header.size()),
                      "every row needs one value per header column");
   row_.resize(fields_.size());
-  for (std::size_t c = 0; c < fields_.size(); ++c)
-    if (!parse_double(fields_[c], row_[c]))
+  for (std::size_t c = 0; c < fields_.size(); ++c) {
+    const auto value = tokens::number<double>(fields_[c]);
+    if (!value)
       throw InputError(where(),
                        fmt::format("column {} ('{}'): '{}' is not a number", c + 1, excerpt(table_.header[c]),
                                    excerpt(fields_[c])),
                        "use plain decimal numbers such as 1.5e-3");
+    row_[c] = *value;
+  }
   return true;
 }
 

@@ -5,12 +5,12 @@
 #include <zlib.h>
 
 #include <bit>
-#include <charconv>
 #include <cstring>
 #include <map>
 #include <optional>
 
 #include "core/error.hpp"
+#include "core/tokens.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtk.hpp"
 
@@ -187,18 +187,12 @@ class VtpReader {
   template <class T>
   std::vector<T> parse_numbers(std::string_view text, const std::string& name) const {
     std::vector<T> values;
-    const char* p = text.data();
-    const char* end = p + text.size();
-    for (;;) {
-      while (p < end && std::strchr(" \t\r\n", *p) != nullptr) ++p;
-      if (p == end) return values;
-      T value{};
-      const auto [next, error] = std::from_chars(p, end, value);
-      if (error != std::errc())
-        fail(fmt::format("'{}' is not a number", excerpt({p, std::size_t(end - p)}, 20)), name);
-      values.push_back(value);
-      p = next;
+    for (const std::string_view word : tokens::words(text)) {
+      const auto value = tokens::number<T>(word);
+      if (!value) fail(fmt::format("'{}' is not a number", excerpt(word, 20)), name);
+      values.push_back(*value);
     }
+    return values;
   }
 
   // An unsigned header entry (32 or 64 bits) at `at` of the appended section.

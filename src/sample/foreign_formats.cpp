@@ -159,7 +159,7 @@ LammpsHeader read_lammps_header(TextReader& in) {
       h.first_section = line;
       break;
     }
-    const auto words = TextReader::split(line);
+    const auto words = tokens::words(line);
     if (words.size() == 2 && words[1] == "atoms") {
       h.atoms = in.count(words[0], "atom count");
       have_atoms = true;
@@ -192,7 +192,7 @@ std::string_view for_each_data_line(TextReader& in, Use&& use) {
   std::string_view data;
   while (in.next(data)) {
     if (starts_with_letter(data)) return data;
-    use(TextReader::split(data));
+    use(tokens::words(data));
   }
   return {};
 }
@@ -218,11 +218,11 @@ std::string_view read_atoms(TextReader& in, bool written_by_rupture, SampleAssem
   const std::string_view header = in.raw_line();
   const auto hash = header.find('#');
   const auto style_text = hash == std::string_view::npos ? std::string_view{} : header.substr(hash + 1);
-  const AtomLayout layout = atom_layout(in, TextReader::split(style_text));
+  const AtomLayout layout = atom_layout(in, tokens::words(style_text));
   return for_each_data_line(in, [&](const std::vector<std::string_view>& words) {
     if (words.size() != layout.columns && words.size() != layout.columns + 3)
       in.fail(fmt::format("{} columns where atom style '{}' has {} (or {} with image flags)", words.size(),
-                          TextReader::trim(style_text), layout.columns, layout.columns + 3));
+                          tokens::trim(style_text), layout.columns, layout.columns + 3));
     const auto column = [&](int k) { return words[static_cast<std::size_t>(k)]; };
     const auto id = sample_id(in, column(layout.id), "atom-ID");
     const double diameter = in.real(column(layout.diameter), "diameter");
@@ -268,7 +268,7 @@ Sample parse_lammps_data(std::string_view text, const std::string& source) {
   std::size_t bonds_read = 0;
   // Each section: a header line starting with a letter, then data lines up to the next header.
   for (std::string_view section = header.first_section; !section.empty();) {
-    const auto name = TextReader::split(section)[0];
+    const auto name = tokens::words(section)[0];
     if (name == "Atoms") {
       have_atoms_section = true;
       section = read_atoms(in, written_by_rupture, build, atoms);
@@ -336,7 +336,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
     const auto line = in.require(fmt::format("'{}'", what));
     if (line != what) in.fail(fmt::format("expected '{}', found '{}'", what, excerpt(line)));
   };
-  auto words = TextReader::split(in.require("'LSMGeometry 1.2'"));
+  auto words = tokens::words(in.require("'LSMGeometry 1.2'"));
   if (words.size() != 2 || words[0] != "LSMGeometry") in.fail("not an LSMGeometry file");
   if (words[1] != "1.2" && words[1] != "1.1")
     in.fail(fmt::format("LSMGeometry version {} is not supported", words[1]),
@@ -345,7 +345,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   std::string_view line;
   for (;;) {
     line = in.require("'BeginParticles'");
-    words = TextReader::split(line);
+    words = tokens::words(line);
     if (words[0] == "BeginParticles") break;
     if (words[0] == "BoundingBox") {
       in.expect_columns(words, 7, "BoundingBox xmin ymin zmin xmax ymax zmax");
@@ -366,7 +366,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
   keyword("Simple");
   const auto particles = in.count(in.require("the particle count"), "particle count");
   for (std::size_t k = 0; k < particles; ++k) {
-    words = TextReader::split(in.require(fmt::format("particle {} of {}", k + 1, particles)));
+    words = tokens::words(in.require(fmt::format("particle {} of {}", k + 1, particles)));
     if (words.size() != 6)
       in.fail(fmt::format("{} columns where 6 were expected (x y z r id tag)", words.size()));
     build.add_particle(in, in.integer(words[4], "id"),
@@ -378,7 +378,7 @@ Sample parse_lsm_geometry(std::string_view text, const std::string& source) {
     if (line != "BeginConnect") in.fail(fmt::format("expected 'BeginConnect', found '{}'", excerpt(line)));
     const auto bonds = in.count(in.require("the connection count"), "connection count");
     for (std::size_t k = 0; k < bonds; ++k) {
-      words = TextReader::split(in.require(fmt::format("connection {} of {}", k + 1, bonds)));
+      words = tokens::words(in.require(fmt::format("connection {} of {}", k + 1, bonds)));
       if (words.size() != 3)
         in.fail(fmt::format("{} columns where 3 were expected (id1 id2 tag)", words.size()));
       build.add_bond(in, in.integer(words[0], "id1"), in.integer(words[1], "id2"));

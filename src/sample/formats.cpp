@@ -87,10 +87,10 @@ Sample parse_own(std::string_view text, const std::string& source) {
   const auto next_data = [&](std::string_view what) {
     for (;;) {
       line = in.require(what);
-      if (line.front() != '#') return TextReader::split(line);
+      if (line.front() != '#') return tokens::words(line);
     }
   };
-  auto words = TextReader::split(in.require("the header 'rupture-sample 1'"));
+  auto words = tokens::words(in.require("the header 'rupture-sample 1'"));
   if (words.size() != 2 || words[0] != "rupture-sample")
     in.fail("not a rupture sample file (the first line must be 'rupture-sample <version>')");
   if (in.integer(words[1], "format version") != own_format_version)
@@ -102,10 +102,10 @@ Sample parse_own(std::string_view text, const std::string& source) {
     if (line.front() != '#') break;
     // The writer adds its own units line, so a comment that reads as one is not kept (whatever the
     // spacing after '#': the written file must read back to the same sample).
-    const auto comment = TextReader::trim(line.substr(1));
+    const auto comment = tokens::trim(line.substr(1));
     if (!comment.starts_with("units:")) build.sample.provenance.emplace_back(comment);
   }
-  words = TextReader::split(line);
+  words = tokens::words(line);
   if (words.size() != 7 || words[0] != "box") in.fail("expected 'box xlo ylo zlo xhi yhi zhi' (mm)");
   Box& box = build.sample.box;
   box.lower = {in.real(words[1], "box xlo"), in.real(words[2], "box ylo"), in.real(words[3], "box zlo")};
@@ -191,7 +191,7 @@ Sample load_sample(const fs::path& path) {
     throw InputError(source, "a .vtp file is a picture of a sample, not a sample",
                      "load the sample file it was written from (own, LAMMPS data or LSMGeometry)");
   const std::string text = io::read_text_file(path);
-  const auto first_line = TextReader::trim(std::string_view(text).substr(0, text.find('\n')));
+  const auto first_line = tokens::trim(std::string_view(text).substr(0, text.find('\n')));
   Sample sample;
   if (first_line.starts_with("rupture-sample")) {
     sample = parse_own(text, source);

@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/tokens.hpp"
 #include "sample/sample.hpp"
 
 namespace rupture::sample_detail {
@@ -38,7 +38,7 @@ class TextReader {
         const auto c = raw.find(comment_);
         if (c != std::string_view::npos) raw = raw.substr(0, c);
       }
-      raw = trim(raw);
+      raw = tokens::trim(raw);
       if (!raw.empty()) {
         line = raw;
         return true;
@@ -63,40 +63,19 @@ class TextReader {
     throw InputError(where(), problem, fix.empty() ? layout_fix_ : fix);
   }
 
-  static std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
-    return s;
-  }
-  static std::vector<std::string_view> split(std::string_view s) {
-    std::vector<std::string_view> words;
-    std::size_t k = 0;
-    while (k < s.size()) {
-      while (k < s.size() && (s[k] == ' ' || s[k] == '\t' || s[k] == '\r')) ++k;
-      const auto start = k;
-      while (k < s.size() && s[k] != ' ' && s[k] != '\t' && s[k] != '\r') ++k;
-      if (k > start) words.push_back(s.substr(start, k - start));
-    }
-    return words;
-  }
-
   // Numbers; `what` names the column in the error.
   double real(std::string_view word, std::string_view what) const {
-    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
+    const auto value = tokens::number<double>(word);
+    if (!value || !std::isfinite(*value))
       fail(fmt::format("{} '{}' is not a finite number", what, excerpt(word)),
            "write a decimal number such as 0.25 or 1e-3");
-    return value;
+    return *value;
   }
   std::int64_t integer(std::string_view word, std::string_view what) const {
-    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
-    std::int64_t value = 0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (ec != std::errc() || end != word.data() + word.size())
+    const auto value = tokens::number<std::int64_t>(word);
+    if (!value)
       fail(fmt::format("{} '{}' is not an integer", what, excerpt(word)), "write a whole number such as 12");
-    return value;
+    return *value;
   }
   std::size_t count(std::string_view word, std::string_view what) const {
     const auto v = integer(word, what);

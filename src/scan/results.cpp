@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-
 #include "core/error.hpp"
+#include "core/tokens.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 
@@ -145,13 +144,12 @@ std::optional<double> ResultsTable::number(std::size_t row, std::string_view nam
   const std::size_t c = require(name);
   const std::string& field = rows.at(row)[c];
   if (field.empty()) return std::nullopt;
-  double value = 0.0;
-  const auto result = std::from_chars(field.data(), field.data() + field.size(), value);
-  if (result.ec != std::errc() || result.ptr != field.data() + field.size())
+  const auto value = tokens::number<double>(field);
+  if (!value)
     throw InputError(fmt::format("{}: row {}", source, row + 1),
                      fmt::format("column '{}': '{}' is not a number", header[c], field),
                      "numeric columns hold plain numbers or nothing");
-  return value;
+  return *value;
 }
 
 ResultsTable parse_results(std::string_view text, const std::string& source) {
