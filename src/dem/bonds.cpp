@@ -11,8 +11,7 @@
 namespace rupture::dem {
 
 BondStore::BondStore(const Sample& sample, std::span<const std::uint32_t> storage_of_sample,
-                     const Params& params)
-    : params_(params) {
+                     const Params& params) {
   const std::size_t n = sample.size(), nb = sample.bonds.size();
   i.resize(nb);
   j.resize(nb);
@@ -36,7 +35,7 @@ BondStore::BondStore(const Sample& sample, std::span<const std::uint32_t> storag
   }
   std::partial_sum(link_start.begin(), link_start.end(), link_start.begin());
   for (auto* v : {&link_other, &link_bond}) v->resize(2 * nb);
-  for (auto* v : {&link_r0, &link_k, &link_limit}) v->resize(2 * nb);
+  link_r0.resize(2 * nb);
   // Per particle, links in order of the other particle (a fixed summation order).
   std::vector<std::vector<std::uint32_t>> bonds_of(n);
   for (std::uint32_t b = 0; b < nb; ++b) {
@@ -59,8 +58,6 @@ void BondStore::set_link(std::uint32_t slot, std::uint32_t a, std::uint32_t bond
   link_bond[slot] = bond;
   link_other[slot] = i[bond] == a ? j[bond] : i[bond];
   link_r0[slot] = r0[bond];
-  link_k[slot] = k[bond];
-  link_limit[slot] = break_limit(params_, r0[bond]);
 }
 
 bool BondStore::linked(std::uint32_t a, std::uint32_t b) const {
@@ -80,8 +77,6 @@ void BondStore::unlink(std::uint32_t bond) {
         std::swap(link_other[l], link_other[last]);
         std::swap(link_bond[l], link_bond[last]);
         std::swap(link_r0[l], link_r0[last]);
-        std::swap(link_k[l], link_k[last]);
-        std::swap(link_limit[l], link_limit[last]);
         --link_count[from];
         break;
       }
@@ -99,7 +94,7 @@ void BondStore::restore(std::span<const std::uint8_t> intact_flags, std::span<co
 
 std::size_t BondStore::bytes() const {
   std::size_t total = 0;
-  for (const auto* v : {&r0, &k, &link_r0, &link_k, &link_limit}) total += v->capacity() * sizeof(double);
+  for (const auto* v : {&r0, &k, &link_r0}) total += v->capacity() * sizeof(double);
   for (const auto* v : {&i, &j, &link_start, &link_count, &link_other, &link_bond})
     total += v->capacity() * sizeof(std::uint32_t);
   return total + intact.capacity();

@@ -37,11 +37,12 @@ struct BondStore {
   // Per particle link slices and per link slot.
   std::vector<std::uint32_t> link_start, link_count;
   std::vector<std::uint32_t> link_other, link_bond;
-  std::vector<double> link_r0, link_k, link_limit;  // mm, N/mm, mm
+  // The rest length (mm) per link; stiffness and break limit follow from it and the Params
+  // (bond_stiffness, break_limit), so they are not stored twice per bond.
+  std::vector<double> link_r0;
 
  private:
   void set_link(std::uint32_t slot, std::uint32_t a, std::uint32_t bond);
-  Params params_;
 };
 
 }  // namespace rupture::dem

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "dem/force_laws.hpp"
+#include "dem/physics.hpp"
 
 namespace rupture::dem {
 
@@ -26,7 +27,8 @@ Energies measure_energies(const ParticleStore& particles, const BondStore& bonds
       const std::uint32_t b = bonds.link_other[l];
       if (b < a) continue;
       const double dx = p.x[b] - p.x[a], dy = p.y[b] - p.y[a], dz = p.z[b] - p.z[a];
-      elastic += HookeBond{bonds.link_k[l], bonds.link_r0[l]}.energy(std::sqrt(dx * dx + dy * dy + dz * dz));
+      const double r0 = bonds.link_r0[l];
+      elastic += HookeBond{bond_stiffness(params, r0), r0}.energy(std::sqrt(dx * dx + dy * dy + dz * dz));
     }
     for (std::uint32_t q = neighbours.start[a]; q < neighbours.start[a] + neighbours.count[a]; ++q) {
       const std::uint32_t b = neighbours.list[q];

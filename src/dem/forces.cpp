@@ -6,6 +6,7 @@
 
 #include "dem/force_laws.hpp"
 #include "dem/integrator.hpp"
+#include "dem/physics.hpp"
 
 namespace rupture::dem {
 
@@ -32,8 +33,7 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
   const double* __restrict rad = p.radius.data();
   const std::uint32_t* __restrict link_other = bonds.link_other.data();
   const double* __restrict link_r0 = bonds.link_r0.data();
-  const double* __restrict link_k = bonds.link_k.data();
-  const double* __restrict link_limit = bonds.link_limit.data();
+  const Params bond_params = params;  // a local copy: its fields stay in registers across the loop
   const std::uint32_t* __restrict link_start = bonds.link_start.data();
   const std::uint32_t* __restrict link_count = bonds.link_count.data();
   const std::uint32_t* __restrict nb_start = neighbours.start.data();
@@ -54,7 +54,8 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
         const std::uint32_t j = link_other[l];
         const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const BreakableBond bond{{link_k[l], link_r0[l]}, link_limit[l]};
+        const double r0 = link_r0[l];
+        const BreakableBond bond{{bond_stiffness(bond_params, r0), r0}, break_limit(bond_params, r0)};
         const double c = bond.force_over_r(r);
         fx += c * dx;
         fy += c * dy;
@@ -65,7 +66,8 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
         for (std::uint32_t l = begin; l < end; ++l) {
           const std::uint32_t j = link_other[l];
           const double dx = x[j] - xa, dy = y[j] - ya, dz = z[j] - za;
-          const BreakableBond bond{{link_k[l], link_r0[l]}, link_limit[l]};
+          const double r0 = link_r0[l];
+          const BreakableBond bond{{bond_stiffness(bond_params, r0), r0}, break_limit(bond_params, r0)};
           if (j > a && bond.breaks(std::sqrt(dx * dx + dy * dy + dz * dz)))
             flags.push_back(bonds.link_bond[l]);
         }

@@ -12,15 +12,6 @@ double particle_mass(double radius, double density_g_per_mm3) {
   return units::density_from_g_per_mm3(density_g_per_mm3) * units::sphere_volume(radius);
 }
 
-double bond_stiffness(const Params& params, double rest_length) {
-  return params.scale_stiffness ? params.bond_stiffness * rest_length / 4.0 : params.bond_stiffness;
-}
-
-double break_limit(const Params& params, double rest_length) {
-  return params.break_rule == BreakRule::absolute ? params.break_distance
-                                                  : params.break_distance * rest_length;
-}
-
 double mean_rest_length(const Sample& sample) {
   double sum = 0.0;
   for (const auto& bond : sample.bonds) sum += bond.rest_length;

@@ -14,10 +14,16 @@ namespace rupture::dem {
 
 // Mass (t) of a sphere of `radius` (mm) at `density` (g/mm^3).
 double particle_mass(double radius, double density_g_per_mm3);
-// A bond's spring constant (N/mm): k_n, or ESyS's k_n * r0 / 4 with scale_stiffness.
-double bond_stiffness(const Params& params, double rest_length);
+// A bond's spring constant (N/mm): k_n, or ESyS's k_n * r0 / 4 with scale_stiffness. Inline: the
+// force pass derives it from the rest length instead of storing it per link.
+inline double bond_stiffness(const Params& params, double rest_length) {
+  return params.scale_stiffness ? params.bond_stiffness * rest_length / 4.0 : params.bond_stiffness;
+}
 // How far (mm) a bond of `rest_length` may stretch before it breaks: b_d, or b * r0 (relative rule).
-double break_limit(const Params& params, double rest_length);
+inline double break_limit(const Params& params, double rest_length) {
+  return params.break_rule == BreakRule::absolute ? params.break_distance
+                                                  : params.break_distance * rest_length;
+}
 
 double mean_rest_length(const Sample& sample);                          // mm; 0 without bonds
 double mean_particle_mass(const Sample& sample, const Params& params);  // t

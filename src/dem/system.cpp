@@ -56,8 +56,9 @@ StabilityBound stability_bound(const ParticleStore& particles, const BondStore& 
   for (std::uint32_t a = 0; a < particles.size(); ++a) {
     double lambda = 0.0, spring_sum = 0.0;
     for (std::uint32_t l = bonds.link_start[a]; l < bonds.link_start[a + 1]; ++l) {
-      lambda += bonds.link_k[l] * (inv_mass[a] + 1.0 / std::sqrt(mass[a] * mass[bonds.link_other[l]]));
-      spring_sum += bonds.link_k[l];
+      const double k = bond_stiffness(params, bonds.link_r0[l]);
+      lambda += k * (inv_mass[a] + 1.0 / std::sqrt(mass[a] * mass[bonds.link_other[l]]));
+      spring_sum += k;
     }
     if (particles.hot.plate[a] != plate_none && params.glue_mode == GlueMode::spring) {
       lambda += params.glue_stiffness * inv_mass[a];
