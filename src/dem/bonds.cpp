@@ -6,17 +6,14 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "dem/physics.hpp"
 
 namespace rupture::dem {
 
-BondStore::BondStore(const Sample& sample, std::span<const std::uint32_t> storage_of_sample,
-                     const Params& params) {
+BondStore::BondStore(const Sample& sample, std::span<const std::uint32_t> storage_of_sample) {
   const std::size_t n = sample.size(), nb = sample.bonds.size();
   i.resize(nb);
   j.resize(nb);
   r0.resize(nb);
-  k.resize(nb);
   intact.assign(nb, 1);
   intact_count = nb;
   link_start.assign(n + 1, 0);
@@ -29,7 +26,6 @@ BondStore::BondStore(const Sample& sample, std::span<const std::uint32_t> storag
     i[b] = storage_of_sample[bond.i];
     j[b] = storage_of_sample[bond.j];
     r0[b] = bond.rest_length;
-    k[b] = bond_stiffness(params, bond.rest_length);
     ++link_start[i[b] + 1];
     ++link_start[j[b] + 1];
   }
@@ -94,7 +90,7 @@ void BondStore::restore(std::span<const std::uint8_t> intact_flags, std::span<co
 
 std::size_t BondStore::bytes() const {
   std::size_t total = 0;
-  for (const auto* v : {&r0, &k, &link_r0}) total += v->capacity() * sizeof(double);
+  for (const auto* v : {&r0, &link_r0}) total += v->capacity() * sizeof(double);
   for (const auto* v : {&i, &j, &link_start, &link_count, &link_other, &link_bond})
     total += v->capacity() * sizeof(std::uint32_t);
   return total + intact.capacity();

@@ -1,6 +1,7 @@
 // dem/bonds: the bond store. Bonds in sample order (storage indices of their ends, rest length,
-// stiffness, intact flag) and, per particle, its links (CSR): each bond seen from both ends with the
-// constants the force pass reads, so that pass streams through them. A particle's intact links
+// intact flag) and, per particle, its links (CSR): each bond seen from both ends with the rest
+// length the force pass reads, so that pass streams through them (stiffness and break limit follow
+// from the rest length and the Params: dem/physics). A particle's intact links
 // occupy [link_start[a], link_start[a] + link_count[a]) in a fixed order (its summation order); a
 // break moves the link past that range, so broken bonds cost the force pass nothing.
 // Owns: the bond arrays and their invariants. Not: deciding that a bond breaks (dem/breaks).
@@ -10,14 +11,13 @@
 #include <span>
 #include <vector>
 
-#include "dem/params.hpp"
 #include "sample/sample.hpp"
 
 namespace rupture::dem {
 
 struct BondStore {
   // Validates the bonds (InputError naming the sample); links ordered by the other particle.
-  BondStore(const Sample& sample, std::span<const std::uint32_t> storage_of_sample, const Params& params);
+  BondStore(const Sample& sample, std::span<const std::uint32_t> storage_of_sample);
 
   std::size_t size() const { return i.size(); }
   std::size_t bytes() const;
@@ -31,7 +31,7 @@ struct BondStore {
 
   // Per bond, sample order.
   std::vector<std::uint32_t> i, j;  // storage indices, ends
-  std::vector<double> r0, k;        // mm, N/mm
+  std::vector<double> r0;           // mm (stiffness and break limit: dem::bond_stiffness, break_limit)
   std::vector<std::uint8_t> intact;
   std::size_t intact_count = 0;
   // Per particle link slices and per link slot.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dem/force_laws.hpp"
+#include "dem/physics.hpp"
 
 namespace rupture::dem {
 
@@ -30,7 +31,7 @@ void BreakLedger::break_one(std::uint32_t b, std::uint64_t step, double half_dt,
   const std::uint32_t i = bonds.i[b], j = bonds.j[b];
   const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], dz = p.z[j] - p.z[i];
   const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-  const HookeBond bond{bonds.k[b], bonds.r0[b]};
+  const HookeBond bond{bond_stiffness(params, bonds.r0[b]), bonds.r0[b]};
   const LinearContact contact{params.contact_stiffness, p.radius[i] + p.radius[j]};
   // The bond acted in the previous kick and not in this one, so for the integrator it vanished half a
   // step ago: its energy there (r moved back by half a step of the pair's relative velocity) is what

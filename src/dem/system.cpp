@@ -80,7 +80,7 @@ StabilityBound stability_bound(const ParticleStore& particles, const BondStore& 
 System::System(const Sample& sample, const Params& params)
     : params_(validated(sample, params)),
       particles_(sample, params_),
-      bonds_(sample, particles_.storage_of_sample, params_),
+      bonds_(sample, particles_.storage_of_sample),
       stability_(stability_bound(particles_, bonds_, params_)),
       parallel_(sample.size() >= 2048),
       widest_skin_(4.0 * params_.skin) {

@@ -18,7 +18,7 @@ struct Block {
   Sample sample = make_cubic_block(4, 4, 3, 0.5);
   Params params;
   ParticleStore particles{sample, params};
-  BondStore bonds{sample, particles.storage_of_sample, params};
+  BondStore bonds{sample, particles.storage_of_sample};
 };
 
 std::vector<std::uint32_t> slice(const NeighbourList& list, std::uint32_t a) {
