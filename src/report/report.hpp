@@ -17,7 +17,7 @@ struct ReportResult {
   std::size_t figures = 0;     // pictures embedded
 };
 
-// Draws the folder's figures into FOLDER/figures (PNG and SVG, via figures::plot) and writes
+// Draws the folder's figures into FOLDER/figures (PNG, SVG and PDF, via figures::plot) and writes
 // FOLDER/report.html atomically. FOLDER is a run folder (curves.csv [+ analysis.json, breaks.csv,
 // run.json, snapshots/]), a scan folder (results.csv, scan.json) or a study folder (study.toml, run/ and
 // scan/: the run's report with the scan's figures 15-17 and claims). `command` is recorded in the page.
