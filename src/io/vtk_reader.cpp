@@ -20,6 +20,9 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "VTK files are read as little-endian");
 
+// The largest uncompressed block size a file may declare (VTK writes 32 kB, rupture 64 kB).
+constexpr std::uint64_t max_block_bytes = std::uint64_t(1) << 30;
+
 // One tag: its name ("/X" for a closing one) and attributes, and where it ends in the text.
 struct Tag {
   std::string name;
@@ -214,16 +217,23 @@ class VtpReader {
     const std::size_t width = wide_header_ ? 8 : 4;
     if (!compressed_) {
       const std::uint64_t size = header_entry(offset, name);
-      if (offset + width + size > appended_.size()) fail("its data runs past the end of the file", name);
+      if (size > appended_.size() || offset + width + size > appended_.size())
+        fail("its data runs past the end of the file", name);
       return std::string(appended_.substr(offset + width, size));
     }
     const std::uint64_t blocks = header_entry(offset, name), block = header_entry(offset + width, name),
                         last = header_entry(offset + 2 * width, name);
+    // A damaged header must not make the reader allocate without bound: each block's compressed
+    // size is in the file, and zlib expands by at most about 1032x.
+    if (blocks > appended_.size() / width || block == 0 || block > max_block_bytes || last > block)
+      fail("its compression header is damaged", name);
     std::size_t at = offset + (3 + blocks) * width;
     std::string bytes;
     for (std::uint64_t b = 0; b < blocks; ++b) {
       const std::uint64_t compressed = header_entry(offset + (3 + b) * width, name);
       const std::uint64_t expected = (b + 1 == blocks && last != 0) ? last : block;
+      if (compressed > appended_.size() || expected > 1032 * (compressed + 64))
+        fail(fmt::format("block {} is damaged", b), name);
       if (at + compressed > appended_.size()) fail("its data runs past the end of the file", name);
       std::string out(expected, '\0');
       uLongf size = static_cast<uLongf>(expected);

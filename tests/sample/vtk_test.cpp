@@ -197,9 +197,15 @@ TEST(Vtp, DamagedFilesAreRejectedNamingTheArray) {
   const std::string cut = text.substr(0, text.size() - 40);  // the last array's bytes lost
   EXPECT_THAT([&] { io::parse_vtp(cut, "cut.vtp"); },
               ::testing::ThrowsMessage<InputError>(HasSubstr("cut.vtp: DataArray 'extension'")));
+  const std::size_t appended =
+      text.find("encoding=\"raw\">\n   _") + std::string("encoding=\"raw\">\n   _").size();
   std::string flipped = text;
-  flipped[flipped.find('_') + 60] ^= 0x5a;  // inside the first compressed block
+  flipped[appended + 40] ^= 0x5a;  // inside the first compressed block (after its 4 x 8-byte header)
   EXPECT_THROW(io::parse_vtp(flipped, "flipped.vtp"), InputError);
+  std::string huge = text;  // the first array's block count set to 2^64 - 1: refused, not allocated
+  for (std::size_t k = 0; k < 8; ++k) huge[appended + k] = '\xff';
+  EXPECT_THAT([&] { io::parse_vtp(huge, "huge.vtp"); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("compression header is damaged")));
   EXPECT_THAT([&] { io::parse_vtp("<VTKFile byte_order=\"BigEndian\">", "big.vtp"); },
               ::testing::ThrowsMessage<InputError>(HasSubstr("BigEndian")));
 }
