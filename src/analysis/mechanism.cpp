@@ -28,12 +28,9 @@ MechanismClass classify(const MechanismFeatures& f, const MechanismRules& rules)
     return {Mechanism::ductile,
             fmt::format("{} significant force maxima (>= {})", f.force_maxima, rules.ductile_force_maxima)};
   }
-  const bool slow_decay = !f.post_peak_decay || *f.post_peak_decay > rules.ductile_decay;
-  if (f.energy_peak_width && *f.energy_peak_width >= rules.ductile_energy_width && slow_decay) {
-    return {Mechanism::ductile, fmt::format("E_e peak width {} x_c (>= {}) and post-peak decay {} x_c (> {})",
-                                            show(f.energy_peak_width), rules.ductile_energy_width,
-                                            show(f.post_peak_decay), rules.ductile_decay)};
-  }
+  // A wide E_e peak with a smoothly decaying force is not ductile: the paper (section 5.2) names
+  // exactly that the semi-ductile class; x_c stays identifiable. Only a force without one clear
+  // maximum makes x_c unidentifiable, so the rule above is the only ductile one.
   if (f.loading_undulation && *f.loading_undulation >= rules.acoustic_undulation) {
     return {
         Mechanism::semi_ductile,
@@ -66,9 +63,9 @@ MechanismClass classify(const MechanismFeatures& f, const MechanismRules& rules)
   return {Mechanism::semi_ductile,
           fmt::format(
               "single force peak, gradual or multi-crack failure: post-peak decay {} x_c (fast <= {}), break "
-              "spread {} x_c (concentrated <= {}), {}; Γ = {}",
+              "spread {} x_c (concentrated <= {}), {}; E_e peak width {} x_c; Γ = {}",
               show(f.post_peak_decay), rules.fast_decay, show(f.break_spread), rules.concentrated_breaks,
-              crack_text(f.crack), show(f.gamma))};
+              crack_text(f.crack), show(f.energy_peak_width), show(f.gamma))};
 }
 
 std::optional<double> break_spread(std::span<const double> break_strains, double x_c) {

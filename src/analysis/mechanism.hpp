@@ -39,9 +39,7 @@ struct MechanismFeatures {
 };
 
 struct MechanismRules {
-  int ductile_force_maxima = 3;       // this many significant force maxima: ductile
-  double ductile_energy_width = 1.0;  // or an E_e peak this wide (relative to x_c) with slow decay
-  double ductile_decay = 1.0;         // "slow": F needs more than this (relative to x_c) to halve
+  int ductile_force_maxima = 3;       // this many significant force maxima: ductile (x_c not identifiable)
   double acoustic_undulation = 0.05;  // semi-ductile: the loading force dips this far (over F_c) before x_c
   double fast_decay = 0.2;            // brittle/hyper-elastic: F halves within this (relative to x_c)
   double concentrated_breaks = 0.5;   // brittle/hyper-elastic: central 80 % of breaks within this (over x_c)

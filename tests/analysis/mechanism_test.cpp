@@ -109,6 +109,33 @@ TEST(MechanismClass, ManyForceMaximaAreDuctileAndRejectedWithoutAClass) {
   EXPECT_EQ(to_json(r)["mechanism"]["features_say"], "ductile");
 }
 
+TEST(MechanismClass, AWideEnergyPeakWithOneSmoothForcePeakIsSemiDuctileAndAccepted) {
+  // A bundle of two fiber populations (60/40 Weibull, shape 3, scales 1 and 2): the force has one
+  // clear maximum, the stronger population keeps E_e up long after it and slows the decay. The
+  // paper (section 5.2) calls a wide E_e with a smoothly decaying force semi-ductile; x_c is
+  // identifiable, so the curve is analysed, not rejected as ductile.
+  Curve c;
+  c.source = "two populations";
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  const auto broken = [](double x) {
+    return 0.6 * (1.0 - std::exp(-std::pow(x, 3.0))) + 0.4 * (1.0 - std::exp(-std::pow(x / 2.0, 3.0)));
+  };
+  for (int i = 0; i <= 2000; ++i) {
+    const double x = 4.0 * i / 2000.0;
+    c.strain.push_back(x);
+    c.force.push_back(x * (1.0 - broken(x)));
+    c.energy.push_back(0.5 * x * x * (1.0 - broken(x)));
+  }
+  const auto r = analyze_curve(c, {});
+  ASSERT_TRUE(r.mechanism);
+  ASSERT_TRUE(r.features.energy_peak_width && r.features.post_peak_decay);
+  EXPECT_GE(*r.features.energy_peak_width, 1.0);  // what the old rule read as a flat top
+  EXPECT_GT(*r.features.post_peak_decay, 1.0);
+  EXPECT_EQ(r.features.force_maxima, 1);
+  EXPECT_EQ(r.mechanism->mechanism, Mechanism::semi_ductile) << r.mechanism->reason;
+  EXPECT_TRUE(r.accepted) << r.rejection;
+}
+
 TEST(MechanismClass, FastCollapseAtSmallStrainIsBrittleWhereverTheCrackIs) {
   MechanismFeatures f;
   f.post_peak_decay = 0.1;
