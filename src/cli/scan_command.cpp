@@ -30,7 +30,7 @@ struct ScanOptions {
   std::vector<std::string> claims_folders;
   int jobs = 0, threads = 0;
   long long task_index = -1;
-  bool collect = false, dry_run = false, reanalyze = false;
+  bool collect = false, dry_run = false, reanalyze = false, help_config = false;
 };
 
 std::string command_line(const ScanOptions& o) {
@@ -66,6 +66,10 @@ void print_plan(const scan::Plan& plan) {
 }
 
 void run(const ScanOptions& o) {
+  if (o.help_config) {
+    fmt::print("{}", scan::rules_reference());
+    return;
+  }
   if (!o.claims_folders.empty()) {
     for (const auto& folder : o.claims_folders)
       fmt::print(
@@ -152,6 +156,7 @@ void add_scan_command(CLI::App& app, int& /*exit_code*/) {
   cmd->add_option("--claims", o->claims_folders,
                   "Print the paper's claims checked against each scan folder's results.csv (markdown)");
   cmd->add_flag("--dry-run", o->dry_run, "List the points with their ramp and stop strain, run nothing");
+  cmd->add_flag("--help-config", o->help_config, "Print every [rules] key with its unit, range and default");
   cmd->callback([o] { run(*o); });
 }
 

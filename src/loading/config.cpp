@@ -10,121 +10,27 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "loading/schema.hpp"
 #include "sample/checks.hpp"
 
 namespace rupture::loading {
 
 namespace {
 
-// The values a number key accepts: finite and inside [low, high] (an end excluded when open).
-// The ranges are wide (orders of magnitude around any run we know of); what they catch is a typo,
-// inf or nan, 1e308, and a value in the wrong unit (a density in t/mm^3 where g/mm^3 belongs).
-struct Range {
-  double low, high;
-  bool low_open = false, high_open = false;
-  std::string text(const std::string& unit) const {
-    return fmt::format("{}{:g}, {:g}{}{}", low_open ? "(" : "[", low, high, high_open ? ")" : "]",
-                       unit.empty() || unit == "1" ? "" : " " + unit);
-  }
-  bool contains(double v) const {
-    return std::isfinite(v) && (low_open ? v > low : v >= low) && (high_open ? v < high : v <= high);
-  }
-};
-
-// One configuration key: where it lives, its unit, default (as text for the reference) and
-// plausible range, what it means, how to read it into RunConfig and how to write it back out.
-struct Key {
-  std::string section, name, unit, default_text, help;
-  std::optional<Range> range;
-  std::function<void(const toml::node&, RunConfig&, const std::string& where)> read;
-  std::function<nlohmann::json(const RunConfig&)> write;
-  std::string path() const { return section + "." + name; }
-};
-
-double read_number(const toml::node& node, const std::string& where) {
-  if (auto v = node.value<double>()) return *v;
-  throw InputError(where, "expects a number", "write e.g. 1e3 (no quotes)");
-}
-// The one check every number of a run config passes (validate() adds the relations between keys).
-double in_range(double value, const std::optional<Range>& range, const std::string& unit,
-                const std::string& default_text, const std::string& where) {
-  if (range && !range->contains(value))
-    throw InputError(
-        where,
-        fmt::format("{:g} is {} the plausible range {}", value,
-                    std::isfinite(value) ? "outside" : "not a finite number in", range->text(unit)),
-        unit.empty() || unit == "1" ? fmt::format("the default is {}", default_text)
-                                    : fmt::format("the default is {} (values in {})", default_text, unit));
-  return value;
-}
-std::int64_t read_integer(const toml::node& node, const std::string& where) {
-  if (node.is_integer()) return *node.value<std::int64_t>();
-  if (auto v = node.value<double>(); v && *v == std::floor(*v) && std::abs(*v) < 9e18)
-    return std::int64_t(*v);
-  throw InputError(where, "expects a whole number", "write e.g. 1000");
-}
-bool read_bool(const toml::node& node, const std::string& where) {
-  if (auto v = node.value<bool>()) return *v;
-  throw InputError(where, "expects true or false");
-}
-std::string read_string(const toml::node& node, const std::string& where) {
-  if (auto v = node.value<std::string>()) return *v;
-  throw InputError(where, "expects a string", "put the value in double quotes");
-}
-template <class T>
-Key number_key(std::string section, std::string name, std::string unit, std::string help, T RunConfig::*field,
-               std::optional<Range> range = std::nullopt) {
-  RunConfig defaults;
-  Key key{std::move(section),
-          std::move(name),
-          std::move(unit),
-          fmt::format("{}", defaults.*field),
-          std::move(help),
-          range,
-          {},
-          {}};
-  key.read = [field, range, unit = key.unit, fallback = key.default_text](
-                 const toml::node& node, RunConfig& c, const std::string& where) {
-    if constexpr (std::is_same_v<T, double>)
-      c.*field = in_range(read_number(node, where), range, unit, fallback, where);
-    else if constexpr (std::is_same_v<T, bool>)
-      c.*field = read_bool(node, where);
-    else if constexpr (std::is_same_v<T, std::string>)
-      c.*field = read_string(node, where);
-    else
-      c.*field = static_cast<T>(in_range(double(read_integer(node, where)), range, unit, fallback, where));
-  };
-  key.write = [field](const RunConfig& c) { return nlohmann::json(c.*field); };
-  if constexpr (std::is_same_v<T, std::string>) key.default_text = fmt::format("\"{}\"", defaults.*field);
-  if constexpr (std::is_same_v<T, bool>) key.default_text = (defaults.*field) ? "true" : "false";
-  return key;
-}
-
-Key choice_key(std::string section, std::string name, std::string help, std::string RunConfig::*field,
-               std::initializer_list<const char*> choices) {
-  Key key = number_key(std::move(section), std::move(name), "", std::move(help), field);
-  std::vector<const char*> kept(choices);
-  key.read = [field, kept](const toml::node& node, RunConfig& c, const std::string& where) {
-    const std::string value = read_string(node, where);
-    std::string list;
-    for (const char* choice : kept) {
-      if (value == choice) {
-        c.*field = value;
-        return;
-      }
-      list += (list.empty() ? "" : ", ") + fmt::format("\"{}\"", choice);
-    }
-    throw InputError(where, fmt::format("\"{}\" is not a valid choice", excerpt(value)),
-                     "use one of " + list);
-  };
-  return key;
-}
+using schema::auto_or_number_key;
+using schema::choice_key;
+using schema::in_range;
+using schema::number_key;
+using schema::Range;
+using schema::read_integer;
+using schema::read_number;
+using Key = schema::Key<RunConfig>;
 
 const Range density_range{min_plausible_density, max_plausible_density};
 
 // The table of every key (150 lines, one entry per key): the single place for key, type, unit,
 // default, range and help, which parsing, --help-config and to_json all read.
-const std::vector<Key>& schema() {
+const std::vector<Key>& run_keys() {
   static const std::vector<Key> keys = [] {
     std::vector<Key> k;
     k.push_back(number_key(
@@ -204,21 +110,8 @@ const std::vector<Key>& schema() {
                            &RunConfig::ramp_steps, Range{0, 1e12}));
     k.push_back(number_key("loading", "damping", "1/s", "viscous damping rate (force -damping m v); 0 = off",
                            &RunConfig::damping, Range{0, 1e12}));
-    {
-      const Range dt_range{1e-18, 1};
-      Key dt{"time",   "dt", "s", "\"auto\"", "time step, or \"auto\" = safety * critical dt",
-             dt_range, {},   {}};
-      dt.read = [dt_range](const toml::node& node, RunConfig& c, const std::string& where) {
-        if (node.is_string()) {
-          if (read_string(node, where) != "auto") throw InputError(where, "expects a number (s) or \"auto\"");
-          c.dt.reset();
-        } else {
-          c.dt = in_range(read_number(node, where), dt_range, "s", "\"auto\"", where);
-        }
-      };
-      dt.write = [](const RunConfig& c) { return c.dt ? nlohmann::json(*c.dt) : nlohmann::json("auto"); };
-      k.push_back(std::move(dt));
-    }
+    k.push_back(auto_or_number_key("time", "dt", "s", "time step, or \"auto\" = safety * critical dt",
+                                   &RunConfig::dt, Range{1e-18, 1}));
     k.push_back(number_key("time", "safety", "1", "automatic dt as a fraction of the critical dt",
                            &RunConfig::dt_safety, Range{0, 1, true}));
     k.push_back(number_key("time", "allow_unstable_dt", "", "accept a dt above the stability limit",
@@ -275,17 +168,7 @@ const std::vector<Key>& schema() {
   return keys;
 }
 
-std::string valid_keys() {
-  std::string list;
-  for (const auto& key : schema()) list += (list.empty() ? "" : ", ") + key.path();
-  return list;
-}
-
-const Key* find_key(const std::string& path) {
-  for (const auto& key : schema())
-    if (key.path() == path) return &key;
-  return nullptr;
-}
+std::string valid_keys() { return schema::valid_keys(run_keys()); }
 
 // Applies "a.b=value" to the table, reading value as TOML (a bare word becomes a string); returns
 // the key's path.
@@ -295,7 +178,7 @@ std::string apply_override(toml::table& table, const std::string& assignment) {
     throw InputError("--set " + assignment, "expects key=value", "write e.g. --set bonds.stiffness=1e4");
   const std::string path = assignment.substr(0, eq), value = assignment.substr(eq + 1);
   const auto dot = path.find('.');
-  if (dot == std::string::npos || find_key(path) == nullptr)
+  if (dot == std::string::npos || schema::find_key(run_keys(), path) == nullptr)
     throw InputError("--set " + path, "unknown key", "valid keys: " + valid_keys());
   toml::table parsed;
   try {
@@ -354,13 +237,8 @@ RunConfig read_keys(RunConfig config, const toml::table& table, const Origin& or
       throw InputError(source + ": " + section, "unknown key (every key belongs to a [section])",
                        "valid keys: " + valid_keys());
     }
-    for (const auto& [name_key, node] : *sub) {
-      const std::string path = section + "." + std::string(name_key.str());
-      const Key* key = find_key(path);
-      if (key == nullptr)
-        throw InputError(source + ": " + path, "unknown key", "valid keys: " + valid_keys());
-      key->read(node, config, origin.at(path));
-    }
+    schema::read_section(run_keys(), section, *sub, config,
+                         [&](const std::string& path) { return origin.at(path); });
   }
   validate(config, origin);
   return config;
@@ -465,35 +343,22 @@ RunConfig with_values(RunConfig base, const nlohmann::json& values, const std::s
 }
 
 std::string config_reference() {
-  std::string out =
-      "# rupture run configuration: every key with its unit and default.\n"
-      "# Give exactly one of sample.file, sample.preset, sample.lattice.\n";
-  std::string section;
-  for (const auto& key : schema()) {
-    if (key.section != section) {
-      section = key.section;
-      out += fmt::format("\n[{}]\n", section);
-    }
-    const std::string unit = key.unit.empty() ? "" : fmt::format(" [{}]", key.unit);
-    const std::string plausible = key.range ? "; plausible " + key.range->text(key.unit) : "";
-    out += fmt::format("# {}{}{}\n{} = {}\n", key.help, unit, plausible, key.name,
-                       key.default_text == "(the sample's)"
-                           ? fmt::format("{:g}  # default: the sample's own", default_density)
-                           : key.default_text);
-  }
-  return out;
+  return schema::reference<RunConfig>(run_keys(),
+                                      "# rupture run configuration: every key with its unit and default.\n"
+                                      "# Give exactly one of sample.file, sample.preset, sample.lattice.\n",
+                                      [](const Key& key) {
+                                        return key.default_text == "(the sample's)"
+                                                   ? fmt::format("{:g}  # default: the sample's own",
+                                                                 default_density)
+                                                   : key.default_text;
+                                      });
 }
 
 std::string config_key_unit(const std::string& path) {
-  for (const auto& key : schema())
-    if (key.path() == path) return key.unit;
-  return {};
+  const Key* key = schema::find_key(run_keys(), path);
+  return key ? key->unit : std::string();
 }
 
-nlohmann::json to_json(const RunConfig& config) {
-  nlohmann::json out = nlohmann::json::object();
-  for (const auto& key : schema()) out[key.section][key.name] = key.write(config);
-  return out;
-}
+nlohmann::json to_json(const RunConfig& config) { return schema::to_json(run_keys(), config); }
 
 }  // namespace rupture::loading

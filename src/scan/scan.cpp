@@ -12,6 +12,7 @@
 #include "dem/system.hpp"
 #include "io/atomic_file.hpp"
 #include "loading/checkpoint.hpp"
+#include "loading/schema.hpp"
 
 namespace rupture::scan {
 
@@ -41,12 +42,6 @@ class Section {
     if (node == nullptr) return fallback;
     if (auto v = node->value<double>()) return *v;
     throw InputError(where(key), "expects a number", "write e.g. 1e3 (no quotes)");
-  }
-  std::int64_t integer(const std::string& key, std::int64_t fallback) const {
-    const double v = number(key, double(fallback));
-    if (v != std::floor(v) || std::abs(v) > 9e18)
-      throw InputError(where(key), fmt::format("{} is not a whole number", v), "write e.g. 10000");
-    return std::int64_t(v);
   }
   std::string text(const std::string& key, const std::string& fallback) const {
     const auto* node = get(key);
@@ -206,55 +201,78 @@ void read_points(const toml::table& root, const std::string& source, ScanConfig&
                      "split the scan into several configs with their own [scan] output");
 }
 
-// [rules]: the per-point dt, ramp, stop strain and output interval.
+// [rules]: the per-point dt, ramp, stop strain and output interval, one key each (the run
+// config's schema machinery: the single place for key, unit, default, range and help).
+const std::vector<loading::schema::Key<ScanConfig>>& rules_keys() {
+  static const auto keys = [] {
+    using namespace loading::schema;
+    std::vector<Key<ScanConfig>> k;
+    k.push_back(auto_or_number_key(
+        "rules", "dt", "s", "time step of every point, or \"auto\" = time.safety x the point's critical dt",
+        &ScanConfig::dt, Range{1e-18, 1}));
+    k.push_back(
+        choice_key("rules", "ramp",
+                   "speed ramp: \"scaled\" (ramp_steps x (ramp_b_d / b_d)^ramp_exponent), \"strain\" "
+                   "(ends at ramp_fraction of the first-break strain) or \"base\" (the base config's)",
+                   &ScanConfig::ramp, {"scaled", "strain", "base"}));
+    k.push_back(number_key("rules", "ramp_fraction", "1",
+                           "\"strain\": the ramp ends at this fraction of the first-break strain",
+                           &ScanConfig::ramp_fraction, Range{0, 1, true}));
+    k.push_back(number_key("rules", "ramp_steps", "steps", "\"scaled\": ramp steps at b_d = ramp_b_d",
+                           &ScanConfig::ramp_steps, Range{0, 1e12}));
+    k.push_back(number_key("rules", "ramp_b_d", "mm",
+                           "\"scaled\": the b_d at which the ramp takes ramp_steps", &ScanConfig::ramp_b_d,
+                           Range{0, 1e3, true}));
+    k.push_back(number_key("rules", "ramp_exponent", "1",
+                           "\"scaled\": ramp steps grow as (ramp_b_d / b_d)^this", &ScanConfig::ramp_exponent,
+                           Range{-10, 10}));
+    k.push_back(number_key("rules", "ramp_min_steps", "steps", "no point's ramp is shorter",
+                           &ScanConfig::ramp_min_steps, Range{0, 1e12}));
+    k.push_back(number_key("rules", "ramp_max_steps", "steps",
+                           "no point's ramp is longer (>= ramp_min_steps)", &ScanConfig::ramp_max_steps,
+                           Range{0, 1e12}));
+    k.push_back(choice_key("rules", "max_strain",
+                           "stop strain: \"scaled\" (max_strain_factor x the first-break strain) or \"base\" "
+                           "(the base config's stop.max_strain)",
+                           &ScanConfig::max_strain, {"scaled", "base"}));
+    k.push_back(number_key("rules", "max_strain_factor", "1",
+                           "\"scaled\": stop at this multiple of the first-break strain",
+                           &ScanConfig::max_strain_factor, Range{0, 1e6, true}));
+    k.push_back(number_key("rules", "max_strain_min", "%", "\"scaled\": never stop below this strain",
+                           &ScanConfig::max_strain_min, Range{0, 1e6, true}));
+    k.push_back(
+        choice_key("rules", "interval",
+                   "curve rows: \"scaled\" (rows_to_first_break rows below the first-break strain) or "
+                   "\"base\" (the base config's output.interval)",
+                   &ScanConfig::interval, {"scaled", "base"}));
+    k.push_back(number_key("rules", "rows_to_first_break", "rows",
+                           "\"scaled\": curve rows below the first-break strain",
+                           &ScanConfig::rows_to_first_break, Range{10, 1e6}));
+    return k;
+  }();
+  return keys;
+}
+
 void read_rules(const toml::table& root, const std::string& source, ScanConfig& c) {
-  const Section rules(root, "rules",
-                      {"dt", "ramp", "ramp_steps", "ramp_b_d", "ramp_exponent", "ramp_fraction",
-                       "ramp_min_steps", "ramp_max_steps", "max_strain", "max_strain_factor",
-                       "max_strain_min", "interval", "rows_to_first_break"},
-                      source);
-  if (const auto* dt = rules.get("dt"); dt && !(dt->is_string() && rules.text("dt", "") == "auto")) {
-    c.dt = rules.number("dt", 0.0);
-    if (!(*c.dt > 0))
-      throw InputError(rules.where("dt"), "must be > 0 (s) or \"auto\"", "write dt = \"auto\"");
-  }
-  c.ramp = rules.text("ramp", c.ramp);
-  if (c.ramp != "scaled" && c.ramp != "strain" && c.ramp != "base")
-    throw InputError(rules.where("ramp"), "'" + c.ramp + "' is not a ramp rule",
-                     "use \"scaled\", \"strain\" or \"base\"");
-  c.ramp_fraction = rules.number("ramp_fraction", c.ramp_fraction);
-  if (!(c.ramp_fraction > 0 && c.ramp_fraction <= 1))
-    throw InputError(rules.where("ramp_fraction"), "must lie in (0, 1]", "e.g. ramp_fraction = 0.1");
-  c.ramp_steps = rules.integer("ramp_steps", c.ramp_steps);
-  c.ramp_b_d = rules.number("ramp_b_d", c.ramp_b_d);
-  c.ramp_exponent = rules.number("ramp_exponent", c.ramp_exponent);
-  c.ramp_min_steps = rules.integer("ramp_min_steps", c.ramp_min_steps);
-  c.ramp_max_steps = rules.integer("ramp_max_steps", c.ramp_max_steps);
-  if (c.ramp_steps < 0 || c.ramp_min_steps < 0 || c.ramp_max_steps < c.ramp_min_steps || !(c.ramp_b_d > 0))
-    throw InputError(
-        rules.where("ramp_steps"),
-        "needs 0 <= ramp_min_steps <= ramp_max_steps, ramp_steps >= 0, ramp_b_d > 0",
-        "e.g. ramp_steps = 10000, ramp_b_d = 0.5, ramp_min_steps = 10000, ramp_max_steps = 1000000");
-  c.max_strain = rules.text("max_strain", c.max_strain);
-  if (c.max_strain != "scaled" && c.max_strain != "base")
-    throw InputError(rules.where("max_strain"), "'" + c.max_strain + "' is not a stop rule",
-                     "use \"scaled\" or \"base\"");
-  c.max_strain_factor = rules.number("max_strain_factor", c.max_strain_factor);
-  c.max_strain_min = rules.number("max_strain_min", c.max_strain_min);
-  if (!(c.max_strain_factor > 0) || !(c.max_strain_min > 0))
-    throw InputError(rules.where("max_strain_factor"), "max_strain_factor and max_strain_min must be > 0",
-                     "e.g. max_strain_factor = 20, max_strain_min = 1");
-  c.interval = rules.text("interval", c.interval);
-  if (c.interval != "scaled" && c.interval != "base")
-    throw InputError(rules.where("interval"), "'" + c.interval + "' is not an output-interval rule",
-                     "use \"scaled\" or \"base\"");
-  c.rows_to_first_break = rules.number("rows_to_first_break", c.rows_to_first_break);
-  if (!(c.rows_to_first_break >= 10 && c.rows_to_first_break <= 1e6))
-    throw InputError(rules.where("rows_to_first_break"), "must lie in [10, 1e6] rows",
-                     "e.g. rows_to_first_break = 400");
+  const auto* node = root.get("rules");
+  if (node == nullptr) return;
+  const auto* table = node->as_table();
+  if (table == nullptr) throw InputError(source + ": rules", "expects a table", "write [rules]");
+  loading::schema::read_section(rules_keys(), "rules", *table, c,
+                                [&](const std::string& path) { return source + ": " + path; });
+  if (c.ramp_max_steps < c.ramp_min_steps)
+    throw InputError(source + ": rules.ramp_max_steps",
+                     fmt::format("{} is below ramp_min_steps = {}", c.ramp_max_steps, c.ramp_min_steps),
+                     "make ramp_max_steps >= ramp_min_steps");
 }
 
 }  // namespace
+
+std::string rules_reference() {
+  return loading::schema::reference(rules_keys(),
+                                    "# rupture scan: the [rules] every point's run follows, with units and "
+                                    "defaults.\n# The other sections: docs/scan.md.\n");
+}
 
 ScanConfig load_scan_config(const std::filesystem::path& file) {
   const std::string source = file.string();
@@ -287,20 +305,7 @@ nlohmann::json to_json(const ScanConfig& c) {
           {"sample", c.sample},
           {"grid", {{"k_n_N_per_mm", range(c.grid_k_n)}, {"b_d_mm", range(c.grid_b_d)}}},
           {"points", listed},
-          {"rules",
-           {{"dt_s", c.dt ? nlohmann::json(*c.dt) : nlohmann::json("auto")},
-            {"ramp", c.ramp},
-            {"ramp_steps", c.ramp_steps},
-            {"ramp_b_d_mm", c.ramp_b_d},
-            {"ramp_exponent", c.ramp_exponent},
-            {"ramp_fraction", c.ramp_fraction},
-            {"ramp_min_steps", c.ramp_min_steps},
-            {"ramp_max_steps", c.ramp_max_steps},
-            {"max_strain", c.max_strain},
-            {"max_strain_factor", c.max_strain_factor},
-            {"max_strain_min_percent", c.max_strain_min},
-            {"interval", c.interval},
-            {"rows_to_first_break", c.rows_to_first_break}}}};
+          {"rules", loading::schema::to_json(rules_keys(), c)["rules"]}};
 }
 
 namespace {
@@ -513,7 +518,10 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
   const auto& scan_config = plan.scan_config;
   plan.base_overrides = scan_config.at("sample").get<std::vector<std::string>>();
   for (const auto& o : scan_config.at("scan").at("set")) plan.base_overrides.push_back(o.get<std::string>());
-  if (const auto& dt = scan_config.at("rules").at("dt_s"); dt.is_number()) plan.dt = dt.get<double>();
+  // Earlier plans name the time step "dt_s"; the rules schema writes the config's own key, "dt".
+  const auto& rules = scan_config.at("rules");
+  if (const auto& dt = rules.contains("dt") ? rules.at("dt") : rules.at("dt_s"); dt.is_number())
+    plan.dt = dt.get<double>();
   // Plans of rupture 0.1 lack the resolved base config: it is read as they read it.
   plan.base_config =
       document.contains("base_config")

@@ -50,6 +50,9 @@ struct ScanConfig {
 // Unknown keys and bad values throw InputError naming the file and key with the fix.
 ScanConfig load_scan_config(const std::filesystem::path& file);
 nlohmann::json to_json(const ScanConfig& config);
+// Every [rules] key with its unit, plausible range and default, as a commented TOML document
+// (rupture scan --help-config).
+std::string rules_reference();
 
 // The base run config with the scan's sample and `set` overrides (what every point starts from).
 loading::RunConfig base_config(const ScanConfig& config);

@@ -268,7 +268,8 @@ std::vector<BadInput> bad_inputs() {
        "1 or "
        "more"},
       {"scan_unknown_ramp_rule", "bad.toml", scan_config + "[rules]\nramp = \"sideways\"\n", scan,
-       "bad.toml: rules.ramp: 'sideways' is not a ramp rule; use \"scaled\", \"strain\" or \"base\""},
+       "bad.toml: rules.ramp: \"sideways\" is not a valid choice; use one of \"scaled\", \"strain\", "
+       "\"base\""},
       // A NUL byte used to end the scan config silently: the points after it were lost.
       {"scan_nul_byte", "bad.toml", std::string("[scan]\nbase = \"base.toml\"\n\0", 27) + scan_grid, scan,
        "bad.toml:3: holds a NUL byte (byte 27): this is not a text file, or it is damaged"},

@@ -133,6 +133,43 @@ TEST(ScanPlan, StrainRulesEndTheRampAndSpaceTheRowsByTheFirstBreakStrain) {
   }
 }
 
+// The [rules] reference (rupture scan --help-config) is itself a valid [rules] section: read back,
+// it gives exactly the defaults, and it names every key the scan's JSON writes.
+TEST(ScanPlan, RulesReferenceReadsBackAsTheDefaults) {
+  TempDir dir;
+  const std::string reference = rules_reference();
+  write(dir / "reference.toml",
+        "[scan]\nbase = '" + examples + "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n" + reference);
+  const auto read = to_json(load_scan_config(dir / "reference.toml"))["rules"];
+  ScanConfig defaults;
+  EXPECT_EQ(read, to_json(defaults)["rules"]);
+  for (const auto& [key, value] : read.items())
+    EXPECT_NE(reference.find("\n" + key + " = "), std::string::npos) << key;
+  EXPECT_EQ(read.size(), 13u);
+  write(dir / "reference.toml",
+        "[scan]\nbase = '" + examples +
+            "block.toml'\n[[points]]\nk_n = 1\nb_d = 1\n[rules]\nramp_min_steps = 10\n"
+            "ramp_max_steps = 5\n");
+  EXPECT_THROW((void)load_scan_config(dir / "reference.toml"), InputError);
+}
+
+// A plan.json written before the rules went through the schema names the time step "dt_s": the
+// scan folder still reads, with its dt.
+TEST(ScanPlan, PlansThatNameTheTimeStepDtSStillRead) {
+  TempDir dir;
+  write(dir / "s.toml", "[scan]\nbase = '" + examples + "block.toml'\noutput = '" + (dir / "scan").string() +
+                            "'\n[[points]]\nk_n = 1e2\nb_d = 0.01\n[rules]\ndt = 1e-7\n");
+  const Plan plan = make_plan(load_scan_config(dir / "s.toml"), unit_block());
+  write_plan(plan);
+  EXPECT_EQ(read_plan(plan.folder).dt, std::optional<double>(1e-7));
+  auto document = nlohmann::json::parse(slurp(plan.folder / "plan.json"));
+  auto& rules = document["scan_config"]["rules"];
+  rules["dt_s"] = rules["dt"];
+  rules.erase("dt");
+  write(plan.folder / "plan.json", document.dump());
+  EXPECT_EQ(read_plan(plan.folder).dt, std::optional<double>(1e-7));
+}
+
 TEST(ScanPlan, PaperScanSpansTheRangesOfSectionFive) {
   // The paper's scan: k_n from 10 to 10^7 N/mm, b_d from 10^-3 to 5 mm; the ramp 10^4 steps where
   // bonds break at large strains and up to 10^6 steps where they break at small ones.
