@@ -130,15 +130,13 @@ double quantile(const std::vector<double>& grid, const std::vector<double>& cdf,
   return grid[k - 1] + t * (grid[k] - grid[k - 1]);
 }
 
-}  // namespace
-
-DelayPosterior infer_delay(double x0, double step, std::span<const double> force_raw,
-                           std::span<const double> force_filtered, std::span<const double> energy_rate,
-                           std::size_t force_peak, const DelayOptions& options) {
+// The summation window (the force peak down to 1 − window_drop of its height), the force noise in
+// it and the prior's range of shifts, into `post`; returns the window's first and last sample.
+std::pair<std::size_t, std::size_t> set_up_window(double x0, double step, std::span<const double> force_raw,
+                                                  std::span<const double> force_filtered,
+                                                  std::size_t force_peak, const DelayOptions& options,
+                                                  DelayPosterior& post) {
   const std::size_t n = force_raw.size();
-  assert(n >= 2 && force_filtered.size() == n && energy_rate.size() == n && force_peak < n);
-  DelayPosterior post;
-  // Summation window: the force peak down to (1 - window_drop) of its height.
   const double level = force_filtered[force_peak] * (1.0 - options.window_drop);
   std::size_t low = force_peak, high = force_peak;
   while (low > 0 && force_filtered[low - 1] >= level) --low;
@@ -155,7 +153,6 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   constexpr double sqrt_half_pi = 1.2533141373155003;
   // A floor keeps noise-free (analytic) curves finite: 1e-12 of the peak force.
   post.misfit_scale = std::max(sqrt_half_pi * post.noise_sigma, 1e-12 * std::abs(force_filtered[force_peak]));
-  const double temperature = post.misfit_scale * post.correlation;
 
   // Prior: every shift for which ℰ(x_i − δ) stays inside the data, at most the strain to the peak.
   const double x_peak = x0 + static_cast<double>(force_peak) * step;
@@ -169,8 +166,16 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   }
   post.prior_low = std::max(post.prior_low, post.window_high - x_end);
   post.prior_high = std::min(post.prior_high, post.window_low - x0);
+  return {low, high};
+}
 
-  std::vector<double> grid, log_density;
+// The log posterior −Σ|F_i − c ℰ(x_i − δ)| / temperature on a grid: a coarse scan of the whole
+// prior, then zooms (401-point grids) onto the region holding the posterior mass (log density
+// within 30 of the maximum) until it spans at least 40 grid points; then the final grid of
+// `grid_points` over that region.
+void zoomed_log_posterior(const Misfit& prototype, double temperature, const DelayPosterior& post,
+                          std::size_t grid_points, std::vector<double>& grid,
+                          std::vector<double>& log_density) {
   // Grid points are independent: each thread has its own Misfit buffers, and every value is
   // computed the same way whatever the thread count.
   const auto evaluate = [&](double a, double b, std::size_t points) {
@@ -180,7 +185,7 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
       grid[k] = a + (b - a) * static_cast<double>(k) / static_cast<double>(points - 1);
 #pragma omp parallel
     {
-      Misfit misfit(force_raw, energy_rate, step, low, high);
+      Misfit misfit = prototype;
 #pragma omp for schedule(static)
       for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(points); ++k) {
         double scale;
@@ -189,9 +194,6 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
       }
     }
   };
-  // Coarse scan of the whole prior, then zoom (401-point grids) onto the region holding the
-  // posterior mass (log density within 30 of the maximum) until it spans at least 40 grid
-  // points; then the final grid of grid_points over that region.
   constexpr std::size_t coarse = 401;
   evaluate(post.prior_low, post.prior_high, coarse);
   for (int zoom = 0; zoom < 12; ++zoom) {
@@ -203,13 +205,17 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
     const double b = grid[std::min(last + 1, grid.size() - 1)];
     const bool resolved = last - first >= 40 || (b - a) < 1e-13 * (post.prior_high - post.prior_low);
     if (resolved || zoom == 11) {
-      evaluate(a, b, options.grid_points);
-      break;
+      evaluate(a, b, grid_points);
+      return;
     }
     evaluate(a, b, coarse);
   }
-  Misfit misfit(force_raw, energy_rate, step, low, high);
-  // Normalise (trapezoid rule), then the summaries.
+}
+
+// Normalises the density on the grid (trapezoid rule) into `post` and summarises it: mean, sd, MAP,
+// median, the 68 % and 95 % intervals and whether the mass piles up at an end of the prior.
+void summarise(const std::vector<double>& grid, const std::vector<double>& log_density,
+               DelayPosterior& post) {
   const double top = *std::max_element(log_density.begin(), log_density.end());
   post.delta = grid;
   post.density.resize(grid.size());
@@ -240,11 +246,27 @@ DelayPosterior infer_delay(double x0, double step, std::span<const double> force
   post.ci68_high = quantile(grid, cdf, 0.8413447460685429);
   post.ci95_low = quantile(grid, cdf, 0.025);
   post.ci95_high = quantile(grid, cdf, 0.975);
-  misfit(post.map, post.scale_at_map);
   const double tolerance = 1e-9 * (post.prior_high - post.prior_low);
   post.at_prior_bound =
       (grid.front() <= post.prior_low + tolerance && post.density.front() > 1e-3 * post.density[best]) ||
       (grid.back() >= post.prior_high - tolerance && post.density.back() > 1e-3 * post.density[best]);
+}
+
+}  // namespace
+
+DelayPosterior infer_delay(double x0, double step, std::span<const double> force_raw,
+                           std::span<const double> force_filtered, std::span<const double> energy_rate,
+                           std::size_t force_peak, const DelayOptions& options) {
+  assert(force_raw.size() >= 2 && force_filtered.size() == force_raw.size() &&
+         energy_rate.size() == force_raw.size() && force_peak < force_raw.size());
+  DelayPosterior post;
+  const auto [low, high] = set_up_window(x0, step, force_raw, force_filtered, force_peak, options, post);
+  Misfit misfit(force_raw, energy_rate, step, low, high);
+  std::vector<double> grid, log_density;
+  zoomed_log_posterior(misfit, post.misfit_scale * post.correlation, post, options.grid_points, grid,
+                       log_density);
+  summarise(grid, log_density, post);
+  misfit(post.map, post.scale_at_map);
   return post;
 }
 
