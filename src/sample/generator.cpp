@@ -130,60 +130,71 @@ struct Sphere {
 
 using Row = Eigen::Vector4d;  // coefficients of (x, y, z, r)
 
-// Spheres (centre x, radius r) touching every obstacle: externally for spheres (|x - c| = R + r),
-// from the inside for faces (n.x - d = r). Coordinates are relative to the trial point, so the
-// numbers stay small and the tangency is exact to ~1e-15 mm. Either all of the obstacles plus a
-// fixed radius, or 4 obstacles and a free radius, give 3 linear equations plus one quadratic: up to
-// two solutions.
-int tangent_spheres(const std::array<Obstacle, 4>& obstacles, int count, std::optional<double> fixed_radius,
-                    std::array<Sphere, 2>& out) {
+// The tangency conditions as linear equations in y = (x, y, z, r): each obstacle against the
+// first sphere obstacle (the reference; |x - c_k|^2 - |x - c_0|^2 = (R_k + r)^2 - (R_0 + r)^2 is
+// linear), each face as n.x - r = d, and a fixed radius as r = R.
+struct TangencySystem {
   std::array<Row, 4> rows;
   std::array<double, 4> rhs{};
-  int n = 0;
-  int reference = -1;
+  int equations = 0;
+  int reference = -1;  // index of the reference sphere; -1: faces only
+  Vec3 c0{};
+  double r0 = 0.0;
+};
+
+TangencySystem tangency_system(const std::array<Obstacle, 4>& obstacles, int count,
+                               std::optional<double> fixed_radius) {
+  TangencySystem t;
   for (int k = 0; k < count; ++k)
     if (!obstacles[k].is_plane) {
-      reference = k;
+      t.reference = k;
       break;
     }
-  const Vec3 c0 = reference >= 0 ? obstacles[reference].v : Vec3{};
-  const double r0 = reference >= 0 ? obstacles[reference].s : 0.0;
+  t.c0 = t.reference >= 0 ? obstacles[t.reference].v : Vec3{};
+  t.r0 = t.reference >= 0 ? obstacles[t.reference].s : 0.0;
+  int& n = t.equations;
   for (int k = 0; k < count; ++k) {
-    if (k == reference) continue;
+    if (k == t.reference) continue;
     const Obstacle& o = obstacles[k];
     if (o.is_plane) {
-      rows[n] = Row(o.v.x, o.v.y, o.v.z, -1.0);
-      rhs[n] = o.s;
+      t.rows[n] = Row(o.v.x, o.v.y, o.v.z, -1.0);
+      t.rhs[n] = o.s;
     } else {
-      // |x - c_k|^2 - |x - c_0|^2 = (R_k + r)^2 - (R_0 + r)^2, linear in (x, r).
-      const Vec3 dc = o.v - c0;
-      rows[n] = Row(dc.x, dc.y, dc.z, o.s - r0);
-      rhs[n] = 0.5 * (norm2(o.v) - norm2(c0) - o.s * o.s + r0 * r0);
+      const Vec3 dc = o.v - t.c0;
+      t.rows[n] = Row(dc.x, dc.y, dc.z, o.s - t.r0);
+      t.rhs[n] = 0.5 * (norm2(o.v) - norm2(t.c0) - o.s * o.s + t.r0 * t.r0);
     }
     ++n;
   }
   if (fixed_radius) {
-    rows[n] = Row(0.0, 0.0, 0.0, 1.0);
-    rhs[n] = *fixed_radius;
+    t.rows[n] = Row(0.0, 0.0, 0.0, 1.0);
+    t.rhs[n] = *fixed_radius;
     ++n;
   }
+  return t;
+}
 
-  if (reference < 0) {  // faces only: a fully determined linear system
-    if (n != 4) return 0;
-    Eigen::Matrix4d a;
-    Eigen::Vector4d b;
-    for (int k = 0; k < 4; ++k) a.row(k) = rows[k].transpose(), b[k] = rhs[k];
-    const Eigen::FullPivLU<Eigen::Matrix4d> lu(a);
-    if (!lu.isInvertible()) return 0;
-    const Eigen::Vector4d y = lu.solve(b);
-    out[0] = {{y[0], y[1], y[2]}, y[3]};
-    return 1;
-  }
-  if (n != 3) return 0;
+// Faces only: four equations, one solution if they are independent.
+int solve_faces_only(const TangencySystem& t, std::array<Sphere, 2>& out) {
+  if (t.equations != 4) return 0;
+  Eigen::Matrix4d a;
+  Eigen::Vector4d b;
+  for (int k = 0; k < 4; ++k) a.row(k) = t.rows[k].transpose(), b[k] = t.rhs[k];
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(a);
+  if (!lu.isInvertible()) return 0;
+  const Eigen::Vector4d y = lu.solve(b);
+  out[0] = {{y[0], y[1], y[2]}, y[3]};
+  return 1;
+}
 
+// Three equations leave a line y = y0 + t w; the reference sphere's quadratic picks up to two
+// points on it.
+int solve_on_the_line(const TangencySystem& t, std::optional<double> fixed_radius,
+                      std::array<Sphere, 2>& out) {
+  if (t.equations != 3) return 0;
   Eigen::Matrix<double, 3, 4> a;
   Eigen::Vector3d b;
-  for (int k = 0; k < 3; ++k) a.row(k) = rows[k].transpose(), b[k] = rhs[k];
+  for (int k = 0; k < 3; ++k) a.row(k) = t.rows[k].transpose(), b[k] = t.rhs[k];
   // Null direction w of a (generalised cross product) and the least-norm particular solution.
   Eigen::Vector4d w;
   for (int col = 0; col < 4; ++col) {
@@ -200,8 +211,8 @@ int tangent_spheres(const std::array<Obstacle, 4>& obstacles, int count, std::op
   const Eigen::Vector4d y0 = a.transpose() * (gram_inverse * b);
 
   // Quadratic in t for y = y0 + t w: |x - c0|^2 = (R0 + r)^2.
-  const Vec3 wx{w[0], w[1], w[2]}, dx = Vec3{y0[0], y0[1], y0[2]} - c0;
-  const double wr = w[3], rr = r0 + y0[3];
+  const Vec3 wx{w[0], w[1], w[2]}, dx = Vec3{y0[0], y0[1], y0[2]} - t.c0;
+  const double wr = w[3], rr = t.r0 + y0[3];
   const double qa = norm2(wx) - wr * wr, qb = 2.0 * (dot(wx, dx) - wr * rr), qc = norm2(dx) - rr * rr;
   std::array<double, 2> roots{};
   int found = 0;
@@ -220,10 +231,21 @@ int tangent_spheres(const std::array<Obstacle, 4>& obstacles, int count, std::op
   int solutions = 0;
   for (int k = 0; k < found; ++k) {
     const Eigen::Vector4d y = y0 + roots[k] * w;
-    if (!(r0 + y[3] > 0.0)) continue;
+    if (!(t.r0 + y[3] > 0.0)) continue;
     out[solutions++] = {{y[0], y[1], y[2]}, fixed_radius ? *fixed_radius : y[3]};
   }
   return solutions;
+}
+
+// Spheres (centre x, radius r) touching every obstacle: externally for spheres (|x - c| = R + r),
+// from the inside for faces (n.x - d = r). Coordinates are relative to the trial point, so the
+// numbers stay small and the tangency is exact to ~1e-15 mm. Either all of the obstacles plus a
+// fixed radius, or 4 obstacles and a free radius, give 3 linear equations plus one quadratic: up to
+// two solutions.
+int tangent_spheres(const std::array<Obstacle, 4>& obstacles, int count, std::optional<double> fixed_radius,
+                    std::array<Sphere, 2>& out) {
+  const TangencySystem t = tangency_system(obstacles, count, fixed_radius);
+  return t.reference < 0 ? solve_faces_only(t, out) : solve_on_the_line(t, fixed_radius, out);
 }
 
 class Packer {
@@ -335,29 +357,13 @@ class Packer {
   std::uint64_t positions_tried_ = 0;
 };
 
-}  // namespace
-
-Sample generate_sample(const PackingParams& params, std::uint64_t seed, GenerationReport* report) {
-  validate(params);
-  const TruncatedLogNormal radii(params.r_min, params.r_max, params.r_median, params.r_sigma);
-  Rng radius_rng(seed, RandomStream::sample_radii);
-  Packer packer(params, seed);
-  GenerationReport local;
-  GenerationReport& rep = report ? *report : local;
-  rep = {};
-
-  const double box_volume = params.size.x * params.size.y * params.size.z;
-  Progress progress("sample: positions tried");  // total unknown: the packing decides when it is full
-  double solid_volume = 0.0;                     // mm^3
-  const auto show = [&](const char* phase) {
-    progress.update_with(static_cast<double>(packer.positions_tried()), [&] {
-      return fmt::format("{}: {} particles, solid fraction {:.3f}", phase, packer.spheres().size(),
-                         solid_volume / box_volume);
-    });
-  };
-
-  // Phase 1: radii drawn from the log-normal, each placed touching three neighbours (or dropped
-  // where it falls while the box is still empty); a draw that finds no place is discarded.
+// Phase 1: radii drawn from the log-normal, each placed touching three neighbours (or dropped
+// where it falls while the box is still empty); a draw that finds no place is discarded. Stops when
+// a block of draws places too few.
+template <class Show>
+void place_drawn_radii(Packer& packer, const TruncatedLogNormal& radii, Rng& radius_rng,
+                       const PackingParams& params, GenerationReport& rep, double& solid_volume,
+                       const Show& show) {
   bool discarded_any = false;
   for (std::uint32_t placed_in_block = params.draw_block;
        placed_in_block >= params.min_drawn_rate * params.draw_block;) {
@@ -379,9 +385,13 @@ Sample generate_sample(const PackingParams& params, std::uint64_t seed, Generati
       show("drawn radii");
     }
   }
-  rep.solid_fraction_drawn = solid_volume / box_volume;
-  // Phase 2: fill the remaining gaps with spheres touching four neighbours (radius set by the gap,
-  // kept only inside [r_min, r_max]) until gaps have become too rare to find.
+}
+
+// Phase 2: fill the remaining gaps with spheres touching four neighbours (radius set by the gap,
+// kept only inside [r_min, r_max]) until gaps have become too rare to find.
+template <class Show>
+void fill_gaps(Packer& packer, const PackingParams& params, GenerationReport& rep, double& solid_volume,
+               const Show& show) {
   for (std::uint32_t filled_in_block = params.fill_block;
        filled_in_block >= params.min_fill_rate * params.fill_block;) {
     filled_in_block = 0;
@@ -394,13 +404,14 @@ Sample generate_sample(const PackingParams& params, std::uint64_t seed, Generati
       show("gap filling");
     }
   }
-  progress.finish();
-  rep.positions_tried = packer.positions_tried();
+}
 
+// The packed spheres as a sample: stored in spatial order (ids follow), bonded, with glued layers
+// and the generator's settings as provenance.
+Sample sample_of(const std::vector<Sphere>& spheres, const PackingParams& params, std::uint64_t seed) {
   Sample sample;
   sample.box = {{0.0, 0.0, 0.0}, params.size};
   sample.density = params.density;
-  const auto& spheres = packer.spheres();
   sample.id.resize(spheres.size());
   sample.position.reserve(spheres.size());
   sample.radius.reserve(spheres.size());
@@ -424,6 +435,34 @@ Sample generate_sample(const PackingParams& params, std::uint64_t seed, Generati
           params.r_max, params.bond_tolerance, params.attempts_per_draw, params.min_drawn_rate,
           params.draw_block, params.min_fill_rate, params.fill_block)};
   return sample;
+}
+
+}  // namespace
+
+Sample generate_sample(const PackingParams& params, std::uint64_t seed, GenerationReport* report) {
+  validate(params);
+  const TruncatedLogNormal radii(params.r_min, params.r_max, params.r_median, params.r_sigma);
+  Rng radius_rng(seed, RandomStream::sample_radii);
+  Packer packer(params, seed);
+  GenerationReport local;
+  GenerationReport& rep = report ? *report : local;
+  rep = {};
+
+  const double box_volume = params.size.x * params.size.y * params.size.z;
+  Progress progress("sample: positions tried");  // total unknown: the packing decides when it is full
+  double solid_volume = 0.0;                     // mm^3
+  const auto show = [&](const char* phase) {
+    progress.update_with(static_cast<double>(packer.positions_tried()), [&] {
+      return fmt::format("{}: {} particles, solid fraction {:.3f}", phase, packer.spheres().size(),
+                         solid_volume / box_volume);
+    });
+  };
+  place_drawn_radii(packer, radii, radius_rng, params, rep, solid_volume, show);
+  rep.solid_fraction_drawn = solid_volume / box_volume;
+  fill_gaps(packer, params, rep, solid_volume, show);
+  progress.finish();
+  rep.positions_tried = packer.positions_tried();
+  return sample_of(packer.spheres(), params, seed);
 }
 
 void make_bonds(Sample& sample, double tolerance) {
