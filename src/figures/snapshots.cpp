@@ -109,31 +109,79 @@ std::vector<SnapshotFile> nearest_snapshots(const std::vector<SnapshotFile>& all
   return chosen;
 }
 
+namespace {
+
+// The extent of every bond end drawn, for one shared set of axes.
+struct Extent {
+  double x_low = INFINITY, x_high = -INFINITY, y_low = INFINITY, y_high = -INFINITY;
+};
+
+// One snapshot's intact bonds as segments (x, y, dx, dy, extension in %), widening `extent`.
+DataBlock intact_bonds_block(const SnapshotBonds& bonds, const SnapshotFile& snapshot,
+                             const std::string& strain_unit, Extent& extent) {
+  DataBlock block;
+  block.title =
+      fmt::format("intact bonds at step {}, strain {:.4g} {}", snapshot.step, snapshot.strain, strain_unit);
+  block.header = {"x[mm]", "y[mm]", "dx[mm]", "dy[mm]", "extension[%]"};
+  block.columns.resize(5);
+  for (std::size_t b = 0; b < bonds.x_a.size(); ++b) {
+    block.columns[0].push_back(bonds.x_a[b]);
+    block.columns[1].push_back(bonds.y_a[b]);
+    block.columns[2].push_back(bonds.x_b[b] - bonds.x_a[b]);
+    block.columns[3].push_back(bonds.y_b[b] - bonds.y_a[b]);
+    block.columns[4].push_back(100.0 * bonds.relative_extension[b]);
+    extent.x_low = std::min({extent.x_low, bonds.x_a[b], bonds.x_b[b]});
+    extent.x_high = std::max({extent.x_high, bonds.x_a[b], bonds.x_b[b]});
+    extent.y_low = std::min({extent.y_low, bonds.y_a[b], bonds.y_b[b]});
+    extent.y_high = std::max({extent.y_high, bonds.y_a[b], bonds.y_b[b]});
+  }
+  return block;
+}
+
+// The bonds broken up to a snapshot, where they broke: the crack, which the intact bonds through
+// the sample's depth would otherwise hide.
+DataBlock broken_bonds_block(const io::CsvTable& breaks, std::uint64_t up_to_step) {
+  DataBlock broken;
+  broken.title = fmt::format("bonds broken up to step {}", up_to_step);
+  broken.header = {"x[mm]", "y[mm]"};
+  broken.columns.resize(2);
+  const auto& step = breaks.column("step");
+  const auto& x = breaks.column("x");
+  const auto& y = breaks.column("y");
+  for (std::size_t r = 0; r < step.size() && step[r] <= double(up_to_step); ++r) {
+    broken.columns[0].push_back(x[r]);
+    broken.columns[1].push_back(y[r]);
+  }
+  return broken;
+}
+
+// One colour scale for every panel, symmetric so an unstretched bond is the middle colour; the same
+// axes for all; each panel the sample's aspect at 1000 px width, plus room for title and labels.
+void share_scales(Figure& figure, std::vector<double> all_extensions, const Extent& e, std::size_t panels) {
+  double scale = quantile_of_magnitude(std::move(all_extensions), colour_quantile);
+  if (!(scale > 0.0)) scale = 1e-6;
+  const double pad_x = 0.02 * (e.x_high - e.x_low), pad_y = 0.05 * (e.y_high - e.y_low);
+  for (auto& panel : figure.panels) {
+    panel.cbrange = fmt::format("[{}:{}]", -scale, scale);
+    panel.xrange = fmt::format("[{}:{}]", e.x_low - pad_x, e.x_high + pad_x);
+    panel.yrange = fmt::format("[{}:{}]", e.y_low - pad_y, e.y_high + pad_y);
+  }
+  const double aspect = (e.y_high - e.y_low + 2 * pad_y) / std::max(e.x_high - e.x_low + 2 * pad_x, 1e-12);
+  figure.height = static_cast<int>(panels) * std::clamp(static_cast<int>(160 + 760 * aspect), 300, 900);
+}
+
+}  // namespace
+
 Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::string& strain_unit,
                         std::vector<std::string> provenance, const io::CsvTable* breaks) {
   Figure figure;
   figure.name = "snapshots";
   std::vector<double> all_extensions;
-  double x_low = INFINITY, x_high = -INFINITY, y_low = INFINITY, y_high = -INFINITY;
+  Extent extent;
   for (const auto& snapshot : chosen) {
     provenance.push_back("read: " + snapshot.file.string());
     const SnapshotBonds bonds = read_snapshot_bonds(snapshot.file);
-    DataBlock block;
-    block.title =
-        fmt::format("intact bonds at step {}, strain {:.4g} {}", snapshot.step, snapshot.strain, strain_unit);
-    block.header = {"x[mm]", "y[mm]", "dx[mm]", "dy[mm]", "extension[%]"};
-    block.columns.resize(5);
-    for (std::size_t b = 0; b < bonds.x_a.size(); ++b) {
-      block.columns[0].push_back(bonds.x_a[b]);
-      block.columns[1].push_back(bonds.y_a[b]);
-      block.columns[2].push_back(bonds.x_b[b] - bonds.x_a[b]);
-      block.columns[3].push_back(bonds.y_b[b] - bonds.y_a[b]);
-      block.columns[4].push_back(100.0 * bonds.relative_extension[b]);
-      x_low = std::min({x_low, bonds.x_a[b], bonds.x_b[b]});
-      x_high = std::max({x_high, bonds.x_a[b], bonds.x_b[b]});
-      y_low = std::min({y_low, bonds.y_a[b], bonds.y_b[b]});
-      y_high = std::max({y_high, bonds.y_a[b], bonds.y_b[b]});
-    }
+    DataBlock block = intact_bonds_block(bonds, snapshot, strain_unit, extent);
     all_extensions.insert(all_extensions.end(), block.columns[4].begin(), block.columns[4].end());
     Panel panel;
     panel.title = fmt::format("strain x = {:.3g} {} (step {}, {} intact bonds)", snapshot.strain, strain_unit,
@@ -145,19 +193,7 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
     panel.series = {{.block = figure.blocks.size(), .style = Style::segments, .extra_columns = {2, 3, 4}}};
     figure.blocks.push_back(std::move(block));
     if (breaks != nullptr) {
-      // The bonds broken up to this snapshot, where they broke: the crack, which the intact bonds
-      // through the sample's depth would otherwise hide.
-      DataBlock broken;
-      broken.title = fmt::format("bonds broken up to step {}", snapshot.step);
-      broken.header = {"x[mm]", "y[mm]"};
-      broken.columns.resize(2);
-      const auto& step = breaks->column("step");
-      const auto& x = breaks->column("x");
-      const auto& y = breaks->column("y");
-      for (std::size_t r = 0; r < step.size() && step[r] <= double(snapshot.step); ++r) {
-        broken.columns[0].push_back(x[r]);
-        broken.columns[1].push_back(y[r]);
-      }
+      DataBlock broken = broken_bonds_block(*breaks, snapshot.step);
       panel.title += fmt::format(", {} broken", broken.columns[0].size());
       if (!broken.columns[0].empty()) {
         panel.series.push_back({.block = figure.blocks.size(),
@@ -171,19 +207,7 @@ Figure snapshots_figure(const std::vector<SnapshotFile>& chosen, const std::stri
     }
     figure.panels.push_back(std::move(panel));
   }
-  // One colour scale for every panel, symmetric so an unstretched bond is the middle colour.
-  double scale = quantile_of_magnitude(std::move(all_extensions), colour_quantile);
-  if (!(scale > 0.0)) scale = 1e-6;
-  const double pad_x = 0.02 * (x_high - x_low), pad_y = 0.05 * (y_high - y_low);
-  for (auto& panel : figure.panels) {
-    panel.cbrange = fmt::format("[{}:{}]", -scale, scale);
-    panel.xrange = fmt::format("[{}:{}]", x_low - pad_x, x_high + pad_x);
-    panel.yrange = fmt::format("[{}:{}]", y_low - pad_y, y_high + pad_y);
-  }
-  // Each panel: the sample's aspect at 1000 px width, plus room for title and labels.
-  const double aspect = (y_high - y_low + 2 * pad_y) / std::max(x_high - x_low + 2 * pad_x, 1e-12);
-  figure.height =
-      static_cast<int>(chosen.size()) * std::clamp(static_cast<int>(160 + 760 * aspect), 300, 900);
+  share_scales(figure, std::move(all_extensions), extent, chosen.size());
   figure.provenance = std::move(provenance);
   figure.caption = fmt::format(
       "Intact bonds at {} strains, coloured by their extension (r - r0)/r0 in % on one scale for all panels "
