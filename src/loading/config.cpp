@@ -28,7 +28,7 @@ using Key = schema::Key<RunConfig>;
 
 const Range density_range{min_plausible_density, max_plausible_density};
 
-// The table of every key (150 lines, one entry per key): the single place for key, type, unit,
+// The table of every key (long: one entry per key): the single place for key, type, unit,
 // default, range and help, which parsing, --help-config and to_json all read.
 const std::vector<Key>& run_keys() {
   static const std::vector<Key> keys = [] {
