@@ -6,7 +6,8 @@
 // Because every slice is sorted and the force pass adds only touching pairs, forces do not depend on
 // the skin or on when the list was rebuilt: the skin is a pure speed setting.
 // Owns: the list, its build, its growth by released pairs and the skin. Not: contact forces
-// (dem/forces).
+// (dem/forces), nor the packing generator's incremental grid (sample/cell_grid: one particle added
+// at a time, where this grid is rebuilt in bulk by a counting sort).
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,9 @@
 // statistics. Cells are at least `min_cell_size` wide, so every pair closer than that lies in the same
 // or an adjacent cell. Iteration order is fixed (cells in x-fastest order, newest particle first in
 // each cell), so everything built on it is deterministic.
+// Not dem/neighbours' grid, on purpose: that one is rebuilt in bulk from moving positions (a
+// counting sort, hundreds of times per run); this one grows by one particle at a time inside a
+// fixed box, which a counting sort cannot do without re-sorting on every insertion.
 #pragma once
 
 #include <algorithm>
