@@ -72,16 +72,21 @@ inline Shape log_normal(double sigma) {
           std::exp(3.0 * sigma)};
 }
 
-// 70 % Weibull(k=4, λ=1) + 30 % Weibull(k=4, λ=1.5): a shoulder on the weak side of the force peak.
-inline Shape weibull_mixture() {
-  const auto w = [](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, 4.0)); };
-  const auto p = [](double x, double lambda) {
+// A two-population bundle: a share `weak` of Weibull(k, λ = 1) fibers and the rest Weibull(k, λ =
+// `strong_scale`).
+inline Shape weibull_mixture(const std::string& name, double weak, double k, double strong_scale, double x_end) {
+  const auto cdf = [k](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, k)); };
+  const auto pdf = [k](double x, double lambda) {
     const double t = x / lambda;
-    return 4.0 / lambda * t * t * t * std::exp(-std::pow(t, 4.0));
+    return k / lambda * std::pow(t, k - 1.0) * std::exp(-std::pow(t, k));
   };
-  return {"weibull mixture", [=](double x) { return x <= 0 ? 0.0 : 0.7 * w(x, 1.0) + 0.3 * w(x, 1.5); },
-          [=](double x) { return x <= 0 ? 0.0 : 0.7 * p(x, 1.0) + 0.3 * p(x, 1.5); }, 2.2};
+  return {name,
+          [=](double x) { return x <= 0 ? 0.0 : weak * cdf(x, 1.0) + (1.0 - weak) * cdf(x, strong_scale); },
+          [=](double x) { return x <= 0 ? 0.0 : weak * pdf(x, 1.0) + (1.0 - weak) * pdf(x, strong_scale); }, x_end};
 }
+
+// 70 % Weibull(k=4, λ=1) + 30 % Weibull(k=4, λ=1.5): a shoulder on the weak side of the force peak.
+inline Shape weibull_mixture() { return weibull_mixture("weibull mixture", 0.7, 4.0, 1.5, 2.2); }
 
 // Gamma distribution of shape k and unit mean scale (θ = 1/k).
 inline Shape gamma_shape(double k) {
@@ -92,15 +97,7 @@ inline Shape gamma_shape(double k) {
 }
 
 // 50 % Weibull(k=6, λ=1) + 50 % Weibull(k=6, λ=1.25).
-inline Shape weibull_mixture_narrow() {
-  const auto w = [](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, 6.0)); };
-  const auto p = [](double x, double lambda) {
-    const double t = x / lambda;
-    return 6.0 / lambda * std::pow(t, 5.0) * std::exp(-std::pow(t, 6.0));
-  };
-  return {"weibull mixture k=6", [=](double x) { return x <= 0 ? 0.0 : 0.5 * w(x, 1.0) + 0.5 * w(x, 1.25); },
-          [=](double x) { return x <= 0 ? 0.0 : 0.5 * p(x, 1.0) + 0.5 * p(x, 1.25); }, 1.8};
-}
+inline Shape weibull_mixture_narrow() { return weibull_mixture("weibull mixture k=6", 0.5, 6.0, 1.25, 1.8); }
 
 // A second held-out set, defined before the first held-out run was looked at in detail and not
 // run while the method was changed after it (bench/analysis_calibration held-out-2).
@@ -110,21 +107,20 @@ inline std::vector<Shape> second_held_out_shapes() {
 }
 
 // 60 % Weibull(k=3, λ=1) + 40 % Weibull(k=3, λ=2).
-inline Shape weibull_mixture_wide() {
-  const auto w = [](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, 3.0)); };
-  const auto p = [](double x, double lambda) {
-    const double t = x / lambda;
-    return 3.0 / lambda * t * t * std::exp(-std::pow(t, 3.0));
-  };
-  return {"weibull mixture k=3", [=](double x) { return x <= 0 ? 0.0 : 0.6 * w(x, 1.0) + 0.4 * w(x, 2.0); },
-          [=](double x) { return x <= 0 ? 0.0 : 0.6 * p(x, 1.0) + 0.4 * p(x, 2.0); }, 3.5};
-}
+inline Shape weibull_mixture_wide() { return weibull_mixture("weibull mixture k=3", 0.6, 3.0, 2.0, 3.5); }
 
 // A third held-out set, fixed before the smoothing-sensitivity term was tried
 // (bench/analysis_calibration held-out-3).
 inline std::vector<Shape> third_held_out_shapes() {
   return {weibull(2.5),    power_law(1),   uniform(0.1, 0.9),
           log_normal(0.2), gamma_shape(8), weibull_mixture_wide()};
+}
+
+// A fourth held-out set, fixed before the per-level interval scales were learned on the tuning set
+// and run only to check them (bench/analysis_calibration held-out-4).
+inline std::vector<Shape> fourth_held_out_shapes() {
+  return {weibull(4),      power_law(2),     uniform(0.15, 0.75),
+          log_normal(0.4), gamma_shape(2.5), weibull_mixture("weibull mixture k=5", 0.4, 5.0, 1.4, 2.0)};
 }
 
 // The nine shapes of the calibration table.
