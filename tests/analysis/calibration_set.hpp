@@ -74,7 +74,8 @@ inline Shape log_normal(double sigma) {
 
 // A two-population bundle: a share `weak` of Weibull(k, λ = 1) fibers and the rest Weibull(k, λ =
 // `strong_scale`).
-inline Shape weibull_mixture(const std::string& name, double weak, double k, double strong_scale, double x_end) {
+inline Shape weibull_mixture(const std::string& name, double weak, double k, double strong_scale,
+                             double x_end) {
   const auto cdf = [k](double x, double lambda) { return 1.0 - std::exp(-std::pow(x / lambda, k)); };
   const auto pdf = [k](double x, double lambda) {
     const double t = x / lambda;
@@ -82,7 +83,8 @@ inline Shape weibull_mixture(const std::string& name, double weak, double k, dou
   };
   return {name,
           [=](double x) { return x <= 0 ? 0.0 : weak * cdf(x, 1.0) + (1.0 - weak) * cdf(x, strong_scale); },
-          [=](double x) { return x <= 0 ? 0.0 : weak * pdf(x, 1.0) + (1.0 - weak) * pdf(x, strong_scale); }, x_end};
+          [=](double x) { return x <= 0 ? 0.0 : weak * pdf(x, 1.0) + (1.0 - weak) * pdf(x, strong_scale); },
+          x_end};
 }
 
 // 70 % Weibull(k=4, λ=1) + 30 % Weibull(k=4, λ=1.5): a shoulder on the weak side of the force peak.
