@@ -359,6 +359,11 @@ std::string config_key_unit(const std::string& path) {
   return key ? key->unit : std::string();
 }
 
+std::optional<schema::Range> config_key_range(const std::string& path) {
+  const Key* key = schema::find_key(run_keys(), path);
+  return key ? key->range : std::nullopt;
+}
+
 nlohmann::json to_json(const RunConfig& config) { return schema::to_json(run_keys(), config); }
 
 }  // namespace rupture::loading

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dem/system.hpp"
+#include "loading/schema.hpp"
 
 namespace rupture::loading {
 
@@ -104,6 +105,10 @@ std::string config_reference();
 // The unit of a key given as "section.name" ("1" for a pure number, "" for text and flags or an
 // unknown key), as the schema states it: for tables that print a resolved config.
 std::string config_key_unit(const std::string& path);
+
+// The plausible range of a number key given as "section.name", as the schema states it: for other
+// configs that set the same quantity (a scan's k_n and b_d).
+std::optional<schema::Range> config_key_range(const std::string& path);
 
 // The resolved configuration (every key, defaults filled in) as JSON, by section.
 nlohmann::json to_json(const RunConfig& config);

@@ -19,8 +19,9 @@ double in_range(double value, const std::optional<Range>& range, const std::stri
         where,
         fmt::format("{:g} is {} the plausible range {}", value,
                     std::isfinite(value) ? "outside" : "not a finite number in", range->text(unit)),
-        unit.empty() || unit == "1" ? fmt::format("the default is {}", default_text)
-                                    : fmt::format("the default is {} (values in {})", default_text, unit));
+        default_text.empty()          ? std::string("give a value inside it (the key has no default)")
+        : unit.empty() || unit == "1" ? fmt::format("the default is {}", default_text)
+                                      : fmt::format("the default is {} (values in {})", default_text, unit));
   return value;
 }
 

@@ -1,8 +1,8 @@
 // loading/schema: how a config is described once — one Key per setting (section, name, unit,
 // default, plausible range, help, how it is read from TOML and written to JSON) — and the readers,
 // range check, JSON form and commented reference every such table shares. The run config
-// (loading/config.cpp) and the scan's [rules] (scan/scan.cpp) are two tables of it. Not: the keys
-// themselves, nor the checks between keys.
+// (loading/config.cpp) and the scan config's [scan], [grid], [[points]] and [rules] (scan/scan.cpp)
+// are tables of it. Not: the keys themselves, nor the checks between keys.
 #pragma once
 
 #include <fmt/format.h>
@@ -49,6 +49,7 @@ struct Key {
   std::optional<Range> range;
   std::function<void(const toml::node&, Config&, const std::string& where)> read;
   std::function<nlohmann::json(const Config&)> write;
+  bool required = false;  // no default: a section that is read lacks it only by mistake
   std::string path() const { return section + "." + name; }
 };
 
@@ -65,7 +66,8 @@ Key<Config> number_key(std::string section, std::string name, std::string unit, 
                   std::move(help),
                   range,
                   {},
-                  {}};
+                  {},
+                  false};
   if constexpr (std::is_same_v<T, std::string>) key.default_text = fmt::format("\"{}\"", defaults.*field);
   if constexpr (std::is_same_v<T, bool>) key.default_text = (defaults.*field) ? "true" : "false";
   key.read = [field, range, unit = key.unit, fallback = key.default_text](const toml::node& node, Config& c,
@@ -78,6 +80,20 @@ Key<Config> number_key(std::string section, std::string name, std::string unit, 
       c.*field = read_string(node, where);
     else
       c.*field = static_cast<T>(in_range(double(read_integer(node, where)), range, unit, fallback, where));
+  };
+  key.write = [field](const Config& c) { return nlohmann::json(c.*field); };
+  return key;
+}
+
+// A number key without a default (a section that is read must give it), checked against `range`.
+template <class Config, class T>
+Key<Config> required_number_key(std::string section, std::string name, std::string unit, std::string help,
+                                T Config::*field, Range range) {
+  Key<Config> key{
+      std::move(section), std::move(name), std::move(unit), "", std::move(help), range, {}, {}, true};
+  key.read = [field, range, unit = key.unit](const toml::node& node, Config& c, const std::string& where) {
+    const double value = std::is_integral_v<T> ? double(read_integer(node, where)) : read_number(node, where);
+    c.*field = static_cast<T>(in_range(value, range, unit, "", where));
   };
   key.write = [field](const Config& c) { return nlohmann::json(c.*field); };
   return key;
@@ -109,8 +125,15 @@ Key<Config> choice_key(std::string section, std::string name, std::string help, 
 template <class Config>
 Key<Config> auto_or_number_key(std::string section, std::string name, std::string unit, std::string help,
                                std::optional<double> Config::*field, Range range) {
-  Key<Config> key{
-      std::move(section), std::move(name), std::move(unit), "\"auto\"", std::move(help), range, {}, {}};
+  Key<Config> key{std::move(section),
+                  std::move(name),
+                  std::move(unit),
+                  "\"auto\"",
+                  std::move(help),
+                  range,
+                  {},
+                  {},
+                  false};
   key.read = [field, range, unit = key.unit](const toml::node& node, Config& c, const std::string& where) {
     if (node.is_string()) {
       if (read_string(node, where) != "auto")
@@ -123,6 +146,25 @@ Key<Config> auto_or_number_key(std::string section, std::string name, std::strin
   key.write = [field](const Config& c) {
     return c.*field ? nlohmann::json(*(c.*field)) : nlohmann::json("auto");
   };
+  return key;
+}
+
+// A key that takes an array of strings.
+template <class Config>
+Key<Config> string_list_key(std::string section, std::string name, std::string help,
+                            std::vector<std::string> Config::*field) {
+  Key<Config> key{
+      std::move(section), std::move(name), "", "[]", std::move(help), std::nullopt, {}, {}, false};
+  key.read = [field, name = key.name](const toml::node& node, Config& c, const std::string& where) {
+    const auto* array = node.as_array();
+    if (array == nullptr)
+      throw InputError(where, "expects an array of strings",
+                       fmt::format("write {} = [\"...\", \"...\"]", name));
+    (c.*field).clear();
+    for (std::size_t i = 0; i < array->size(); ++i)
+      (c.*field).push_back(read_string(*array->get(i), fmt::format("{}[{}]", where, i)));
+  };
+  key.write = [field](const Config& c) { return nlohmann::json(c.*field); };
   return key;
 }
 
@@ -141,7 +183,7 @@ const Key<Config>* find_key(const std::vector<Key<Config>>& keys, const std::str
 }
 
 // Reads every key of one [section] table into `config` (an unknown key is refused with the list of
-// valid ones); `where(path)` names a key's origin in messages.
+// valid ones, a missing required one by name); `where(path)` names a key's origin in messages.
 template <class Config, class Where>
 void read_section(const std::vector<Key<Config>>& keys, const std::string& section, const toml::table& table,
                   Config& config, const Where& where) {
@@ -151,6 +193,20 @@ void read_section(const std::vector<Key<Config>>& keys, const std::string& secti
     if (key == nullptr) throw InputError(where(path), "unknown key", "valid keys: " + valid_keys(keys));
     key->read(node, config, where(path));
   }
+  for (const auto& key : keys)
+    if (key.required && key.section == section && !table.contains(key.name))
+      throw InputError(where(key.path()), "missing", fmt::format("add {} = ... ({})", key.name, key.help));
+}
+
+// Reads `root`'s [section] with read_section when it is there; a value that is not a table is refused.
+template <class Config, class Where>
+void read_optional_section(const std::vector<Key<Config>>& keys, const toml::table& root,
+                           const std::string& section, Config& config, const Where& where) {
+  const auto* node = root.get(section);
+  if (node == nullptr) return;
+  const auto* table = node->as_table();
+  if (table == nullptr) throw InputError(where(section), "expects a table", "write [" + section + "]");
+  read_section(keys, section, *table, config, where);
 }
 
 // {"section": {"name": value}} for every key.

@@ -18,50 +18,6 @@ namespace rupture::scan {
 
 namespace {
 
-// One [section] of the scan config: reads known keys, rejects unknown ones with the list of valid ones.
-class Section {
- public:
-  Section(const toml::table& root, std::string name, std::vector<std::string> keys, const std::string& source)
-      : name_(std::move(name)), keys_(std::move(keys)), source_(source) {
-    if (const auto* node = root.get(name_)) {
-      table_ = node->as_table();
-      if (table_ == nullptr) throw InputError(where(""), "expects a table", "write [" + name_ + "]");
-      for (const auto& [key, value] : *table_) {
-        (void)value;
-        if (std::find(keys_.begin(), keys_.end(), std::string(key.str())) == keys_.end())
-          throw InputError(where(std::string(key.str())), "unknown key", "valid keys: " + valid());
-      }
-    }
-  }
-  const toml::node* get(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
-  std::string where(const std::string& key) const {
-    return source_ + ": " + name_ + (key.empty() ? "" : "." + key);
-  }
-  double number(const std::string& key, double fallback) const {
-    const auto* node = get(key);
-    if (node == nullptr) return fallback;
-    if (auto v = node->value<double>()) return *v;
-    throw InputError(where(key), "expects a number", "write e.g. 1e3 (no quotes)");
-  }
-  std::string text(const std::string& key, const std::string& fallback) const {
-    const auto* node = get(key);
-    if (node == nullptr) return fallback;
-    if (auto v = node->value<std::string>()) return *v;
-    throw InputError(where(key), "expects a string", "put the value in double quotes");
-  }
-
- private:
-  std::string valid() const {
-    std::string list;
-    for (const auto& k : keys_) list += (list.empty() ? "" : ", ") + name_ + "." + k;
-    return list;
-  }
-  std::string name_;
-  std::vector<std::string> keys_;
-  std::string source_;
-  const toml::table* table_ = nullptr;
-};
-
 // strtod, not stod: a subnormal such as 1e-308 must reach the range check, not throw.
 double round6(double value) { return std::strtod(fmt::format("{:.6g}", value).c_str(), nullptr); }
 
@@ -81,63 +37,42 @@ std::string toml_text(const toml::node& node, const std::string& where) {
                    "write it as in a run config");
 }
 
-LogRange read_range(const Section& grid, const std::string& key) {
-  const auto* node = grid.get(key);
-  const auto* table = node ? node->as_table() : nullptr;
-  if (table == nullptr)
-    throw InputError(grid.where(key), "expects { from = ..., to = ..., count = ... }",
-                     "write e.g. " + key + " = { from = 1e2, to = 1e5, count = 4 }");
-  LogRange range;
-  for (const auto& [k, v] : *table) {
-    const std::string name(k.str());
-    const auto value = v.value<double>();
-    if (!value || (name != "from" && name != "to" && name != "count"))
-      throw InputError(grid.where(key + "." + name), "unknown key or not a number",
-                       "use from, to (numbers) and count");
-    if (name == "from") range.from = *value;
-    if (name == "to") range.to = *value;
-    if (name == "count") {
-      // Checked before the conversion: a fraction or a count past int's range is an input error.
-      if (*value != std::floor(*value) || *value < 1 || *value > 100000)
-        throw InputError(grid.where(key + ".count"),
-                         fmt::format("{} is not a whole number from 1 to 100000", *value),
-                         "give the number of values, e.g. count = 4");
-      range.count = int(*value);
-    }
-  }
-  if (!(range.from > 0) || !(range.to > 0) || !std::isfinite(range.from) || !std::isfinite(range.to) ||
-      range.count < 1 || range.count > 100000)
-    throw InputError(grid.where(key),
-                     fmt::format("from = {}, to = {}, count = {}", range.from, range.to, range.count),
-                     "give finite from > 0, to > 0 and a count of 1 or more");
-  return range;
-}
-
 }  // namespace
 
 namespace {
 
+// [scan]'s keys as written; base and output become paths once read.
+struct ScanSection {
+  std::string base, output = ScanConfig{}.output.string();
+  std::vector<std::string> set;
+};
+
+const std::vector<loading::schema::Key<ScanSection>>& scan_keys() {
+  static const auto keys = [] {
+    using namespace loading::schema;
+    return std::vector<Key<ScanSection>>{
+        number_key("scan", "base", "", "the run config every point starts from, relative to the scan config",
+                   &ScanSection::base),
+        number_key("scan", "output", "", "the scan folder, relative to the working directory",
+                   &ScanSection::output),
+        string_list_key("scan", "set", "run-config overrides for every point, as --set takes them",
+                        &ScanSection::set)};
+  }();
+  return keys;
+}
+
 // [scan]: the base run config (relative to the scan config's folder), the output folder, set.
 void read_scan_section(const toml::table& root, const std::string& source,
                        const std::filesystem::path& folder, ScanConfig& c) {
-  const Section scan(root, "scan", {"base", "output", "set"}, source);
-  const std::string base = scan.text("base", "");
-  if (base.empty())
-    throw InputError(scan.where("base"), "missing", "name the run config, e.g. base = \"tissue.toml\"");
-  c.base = std::filesystem::path(base).is_relative() ? folder / base : std::filesystem::path(base);
-  c.output = scan.text("output", c.output.string());
-  if (const auto* set = scan.get("set")) {
-    const auto* array = set->as_array();
-    if (array == nullptr)
-      throw InputError(scan.where("set"), "expects an array of strings",
-                       "write set = [\"stop.max_steps=1e6\"]");
-    for (const auto& item : *array) {
-      const auto text = item.value<std::string>();
-      if (!text)
-        throw InputError(scan.where("set"), "expects strings", "write set = [\"stop.max_steps=1e6\"]");
-      c.set.push_back(*text);
-    }
-  }
+  ScanSection scan;
+  loading::schema::read_optional_section(scan_keys(), root, "scan", scan,
+                                         [&](const std::string& path) { return source + ": " + path; });
+  if (scan.base.empty())
+    throw InputError(source + ": scan.base", "missing", "name the run config, e.g. base = \"tissue.toml\"");
+  c.base =
+      std::filesystem::path(scan.base).is_relative() ? folder / scan.base : std::filesystem::path(scan.base);
+  c.output = scan.output;
+  c.set = scan.set;
 }
 
 // [sample]: keys that replace the base config's sample, as overrides.
@@ -164,13 +99,78 @@ void read_sample_section(const toml::table& root, const std::string& source,
   }
 }
 
+// The run-config keys a point sets: k_n and b_d take their units and plausible ranges from them.
+constexpr const char* stiffness_key = "bonds.stiffness";
+constexpr const char* break_distance_key = "bonds.break_distance";
+
+// One [grid] range, { from, to, count }: from and to are values of the run-config key it scans.
+std::vector<loading::schema::Key<LogRange>> range_keys(const std::string& section,
+                                                       const std::string& run_key) {
+  using namespace loading::schema;
+  const std::string unit = loading::config_key_unit(run_key);
+  const Range values = *loading::config_key_range(run_key);
+  return {required_number_key(section, "from", unit, "the first value", &LogRange::from, values),
+          required_number_key(section, "to", unit, "the last value", &LogRange::to, values),
+          required_number_key(section, "count", "", "how many values, log-spaced", &LogRange::count,
+                              Range{1, 100000})};
+}
+
+// A [grid] key: the { from, to, count } range of one run-config key.
+loading::schema::Key<ScanConfig> grid_key(const std::string& name, const std::string& run_key,
+                                          std::optional<LogRange> ScanConfig::*field) {
+  loading::schema::Key<ScanConfig> key{"grid",
+                                       name,
+                                       loading::config_key_unit(run_key),
+                                       "",
+                                       "{ from, to, count }: log-spaced values of " + run_key,
+                                       {},
+                                       {},
+                                       {},
+                                       true};
+  key.read = [=](const toml::node& node, ScanConfig& c, const std::string& where) {
+    const auto* table = node.as_table();
+    if (table == nullptr)
+      throw InputError(where, "expects { from = ..., to = ..., count = ... }",
+                       "write e.g. " + name + " = { from = 1e2, to = 1e5, count = 4 }");
+    const std::string section = "grid." + name;
+    LogRange range;
+    loading::schema::read_section(
+        range_keys(section, run_key), section, *table, range,
+        [&](const std::string& path) { return where + path.substr(section.size()); });
+    c.*field = range;
+  };
+  return key;
+}
+
+const std::vector<loading::schema::Key<ScanConfig>>& grid_keys() {
+  static const std::vector<loading::schema::Key<ScanConfig>> keys = {
+      grid_key("k_n", stiffness_key, &ScanConfig::grid_k_n),
+      grid_key("b_d", break_distance_key, &ScanConfig::grid_b_d)};
+  return keys;
+}
+
+// One [[points]] entry.
+struct ListedPoint {
+  double k_n = 0.0, b_d = 0.0;
+};
+
+const std::vector<loading::schema::Key<ListedPoint>>& point_keys() {
+  static const auto keys = [] {
+    using namespace loading::schema;
+    return std::vector<Key<ListedPoint>>{
+        required_number_key("points", "k_n", loading::config_key_unit(stiffness_key), "the bond stiffness",
+                            &ListedPoint::k_n, *loading::config_key_range(stiffness_key)),
+        required_number_key("points", "b_d", loading::config_key_unit(break_distance_key),
+                            "the break distance", &ListedPoint::b_d,
+                            *loading::config_key_range(break_distance_key))};
+  }();
+  return keys;
+}
+
 // [grid] and [[points]]: the (k_n, b_d) pairs, at least one and at most max_points.
 void read_points(const toml::table& root, const std::string& source, ScanConfig& c) {
-  const Section grid(root, "grid", {"k_n", "b_d"}, source);
-  if (grid.get("k_n") || grid.get("b_d")) {
-    c.grid_k_n = read_range(grid, "k_n");
-    c.grid_b_d = read_range(grid, "b_d");
-  }
+  const auto where = [&](const std::string& path) { return source + ": " + path; };
+  loading::schema::read_optional_section(grid_keys(), root, "grid", c, where);
   if (const auto* points = root.get("points")) {
     const auto* array = points->as_array();
     if (array == nullptr)
@@ -180,14 +180,11 @@ void read_points(const toml::table& root, const std::string& source, ScanConfig&
       const auto* entry = array->get(i)->as_table();
       if (entry == nullptr)
         throw InputError(fmt::format("{}: points[{}]", source, i), "expects a table", "write [[points]]");
-      toml::table wrapper;
-      wrapper.insert("points", *entry);
-      const Section point(wrapper, "points", {"k_n", "b_d"}, source);
-      const double k = point.number("k_n", 0.0), b = point.number("b_d", 0.0);
-      if (!(k > 0) || !(b > 0) || !std::isfinite(k) || !std::isfinite(b))
-        throw InputError(fmt::format("{}: points[{}]", source, i), "needs k_n > 0 (N/mm) and b_d > 0 (mm)",
-                         "write k_n = 1e3 and b_d = 0.05");
-      c.listed.emplace_back(round6(k), round6(b));
+      ListedPoint point;
+      loading::schema::read_section(point_keys(), "points", *entry, point, [&](const std::string& path) {
+        return fmt::format("{}: points[{}]{}", source, i, path.substr(std::string("points").size()));
+      });
+      c.listed.emplace_back(round6(point.k_n), round6(point.b_d));
     }
   }
   if (!c.grid_k_n && c.listed.empty())
@@ -254,12 +251,8 @@ const std::vector<loading::schema::Key<ScanConfig>>& rules_keys() {
 }
 
 void read_rules(const toml::table& root, const std::string& source, ScanConfig& c) {
-  const auto* node = root.get("rules");
-  if (node == nullptr) return;
-  const auto* table = node->as_table();
-  if (table == nullptr) throw InputError(source + ": rules", "expects a table", "write [rules]");
-  loading::schema::read_section(rules_keys(), "rules", *table, c,
-                                [&](const std::string& path) { return source + ": " + path; });
+  loading::schema::read_optional_section(rules_keys(), root, "rules", c,
+                                         [&](const std::string& path) { return source + ": " + path; });
   if (c.ramp_max_steps < c.ramp_min_steps)
     throw InputError(source + ": rules.ramp_max_steps",
                      fmt::format("{} is below ramp_min_steps = {}", c.ramp_max_steps, c.ramp_min_steps),

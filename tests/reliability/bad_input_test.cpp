@@ -264,9 +264,9 @@ std::vector<BadInput> bad_inputs() {
       {"scan_unknown_key", "bad.toml", "[scan]\nbase = \"base.toml\"\nbogus = 1\n" + scan_grid, scan,
        "bad.toml: scan.bogus: unknown key; valid keys: scan.base, scan.output, scan.set"},
       {"scan_negative_range", "bad.toml", replaced(scan_config, "from = 1e3", "from = -1e3"), scan,
-       "bad.toml: grid.k_n: from = -1000, to = 10000, count = 2; give finite from > 0, to > 0 and a count of "
-       "1 or "
-       "more"},
+       "bad.toml: grid.k_n.from: -1000 is outside the plausible range [1e-06, 1e+12] N/mm; give a value "
+       "inside "
+       "it (the key has no default)"},
       {"scan_unknown_ramp_rule", "bad.toml", scan_config + "[rules]\nramp = \"sideways\"\n", scan,
        "bad.toml: rules.ramp: \"sideways\" is not a valid choice; use one of \"scaled\", \"strain\", "
        "\"base\""},

@@ -249,15 +249,34 @@ TEST(ScanPlan, BadConfigsNameTheKeyAndTheFix) {
               "[grid]\nk_n = { from = 1, to = 2, count = 2.5 }\nb_d = { from = 1, to = 2, count = 2 }\n")
           .find("grid.k_n.count"),
       std::string::npos);
+  // The grid's ranges, the points and [scan] are read by the config schema, as [rules] and a run
+  // config are: unknown and missing keys are named with the ones that belong there.
+  EXPECT_NE(
+      message(base + "[grid]\nk_n = { from = 1, to = 2, count = 2 }\nb_d = { from = 1, to = 2, step = 2 }\n")
+          .find("grid.b_d.step: unknown key; valid keys: grid.b_d.from, grid.b_d.to, grid.b_d.count"),
+      std::string::npos);
+  EXPECT_NE(message(base + "[grid]\nk_n = { from = 1, to = 2, count = 2 }\nb_d = { from = 1, to = 2 }\n")
+                .find("grid.b_d.count: missing; add count = ..."),
+            std::string::npos);
+  EXPECT_NE(message(base + "[grid]\nk_n = { from = 1, to = 2, count = 2 }\n").find("grid.b_d: missing"),
+            std::string::npos);
+  EXPECT_NE(message(base + "[[points]]\nk_n = 10\n[[points]]\nb_d = 1\n").find("points[0].b_d: missing"),
+            std::string::npos);
+  EXPECT_NE(message(base + "set = \"stop.max_steps=10\"\n[[points]]\nk_n = 10\nb_d = 1\n")
+                .find("scan.set: expects an array of strings"),
+            std::string::npos);
+  EXPECT_NE(message(base + "set = [\"stop.max_steps=10\", 3]\n[[points]]\nk_n = 10\nb_d = 1\n")
+                .find("scan.set[1]: expects a string"),
+            std::string::npos);
   // Non-finite or subnormal values, grids too large to hold, and a given dt above some point's
   // stability limit are refused with the key, before anything runs.
   EXPECT_NE(
       message(base +
               "[grid]\nk_n = { from = 1, to = inf, count = 2 }\nb_d = { from = 1, to = 2, count = 2 }\n")
-          .find("grid.k_n: from = 1, to = inf"),
+          .find("grid.k_n.to: inf is not a finite number in the plausible range"),
       std::string::npos);
   EXPECT_NE(message(base + "[[points]]\nk_n = 1e-308\nb_d = 1\n")
-                .find("bonds.stiffness: 1e-308 is outside the plausible range"),
+                .find("points[0].k_n: 1e-308 is outside the plausible range"),
             std::string::npos);
   EXPECT_NE(
       message(
