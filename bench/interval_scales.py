@@ -1,13 +1,18 @@
 #!/usr/bin/env python3
 """Learns the per-level scales of δ_x's intervals and checks them (docs/analysis.md, "Calibration").
 
-Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--check CHECK.csv ...]
+Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--use KIND=S68,S95 ...] [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
 stretched about the estimate to reach the truth. The scale of level L is the split-conformal
-quantile of the learning curves' scores: the ceil((n + 1) L)-th smallest of n. The check files are
-then scored with those scales and never used to choose them.
+quantile of the learning curves' scores, the ceil((n + 1) L)-th smallest of n, taken separately for
+each kind of noise the analysis tells apart (the `noise` column: white, random walk), as
+src/analysis/analysis.hpp applies them. The check files are then scored with those scales and never
+used to choose them. `--use "random walk=1,0.6119"` scores with given factors for one kind instead of
+the learned ones (what src/analysis/analysis.hpp applies where a learned factor failed its check).
+As in the analysis, the 95 % interval is never inside the 68 % one: a curve counts as covered at
+95 % when either scaled interval reaches the truth.
 Standard library only, so it runs wherever the bench does.
 """
 import csv
@@ -42,36 +47,67 @@ def conformal_scale(scores, level):
     return ordered[rank - 1]
 
 
+def learn_scales(rows):
+    """{noise kind: {level: scale}} from the accepted rows of each kind."""
+    scales = {}
+    for kind in sorted({r["noise"] for r in rows}):
+        accepted = [r for r in rows if r["noise"] == kind and r["accepted"] == "1"]
+        if accepted:
+            scales[kind] = {lvl: conformal_scale([score(r, lvl) for r in accepted], p) for lvl, p in LEVELS}
+    return scales
+
+
+def is_covered(row, level, by_level):
+    """Whether the scaled interval of `level` reaches the truth (the 95 % one holds the 68 % one)."""
+    reached = score(row, level) <= by_level[level]
+    return reached or (level == "95" and score(row, "68") <= by_level["68"])
+
+
 def table(title, rows, scales):
     groups = OrderedDict()
     for row in rows:
         groups.setdefault(row["group"], []).append(row)
     print(f"\n{title}\n")
-    print("| group | curves | accepted | δ_x 68 % (scaled) | δ_x 95 % (scaled) | δ_x 68 % (unscaled) | "
+    print("| group | curves | read as random walk | accepted | δ_x 68 % (scaled) | δ_x 95 % (scaled) | δ_x 68 % (unscaled) | "
           "δ_x 95 % (unscaled) |")
-    print("|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|")
     for name, members in list(groups.items()) + [("all", rows)]:
         accepted = [r for r in members if r["accepted"] == "1"]
         n = max(1, len(accepted))
-        covered = {lvl: sum(score(r, lvl) <= scales[lvl] for r in accepted) for lvl, _ in LEVELS}
+        covered = {lvl: sum(is_covered(r, lvl, scales[r["noise"]]) for r in accepted) for lvl, _ in LEVELS}
         raw = {lvl: sum(score(r, lvl) <= 1.0 for r in accepted) for lvl, _ in LEVELS}
-        print(f"| {name} | {len(members)} | {len(accepted)} | {100 * covered['68'] / n:.1f} % | "
+        walks = sum(r["noise"] == "random walk" for r in members)
+        print(f"| {name} | {len(members)} | {walks} | {len(accepted)} | {100 * covered['68'] / n:.1f} % | "
               f"{100 * covered['95'] / n:.1f} % | {100 * raw['68'] / n:.1f} % | {100 * raw['95'] / n:.1f} % |")
 
 
 def main(argv):
     if "--check" in argv:
         cut = argv.index("--check")
-        learn, check = argv[:cut], argv[cut + 1:]
+        argv, check = argv[:cut], argv[cut + 1:]
     else:
-        learn, check = argv, []
+        check = []
+    learn, given = [], {}
+    args = iter(argv)
+    for arg in args:
+        if arg == "--use":
+            kind, _, factors = next(args, "").partition("=")
+            s68, _, s95 = factors.partition(",")
+            given[kind] = {"68": float(s68), "95": float(s95)}
+        else:
+            learn.append(arg)
     if not learn:
         sys.exit("interval_scales.py: name at least one per-curve file to learn from")
     learning = read(learn)
-    accepted = [r for r in learning if r["accepted"] == "1"]
-    scales = {lvl: conformal_scale([score(r, lvl) for r in accepted], p) for lvl, p in LEVELS}
-    print(f"learned on {', '.join(learn)} ({len(accepted)} accepted curves): "
-          f"scale 68 % = {scales['68']:.4f}, scale 95 % = {scales['95']:.4f}")
+    scales = learn_scales(learning)
+    print(f"learned on {', '.join(learn)}:")
+    for kind, by_level in scales.items():
+        n = sum(r["noise"] == kind and r["accepted"] == "1" for r in learning)
+        print(f"  {kind} noise ({n} accepted curves): scale 68 % = {by_level['68']:.4f}, "
+              f"scale 95 % = {by_level['95']:.4f}")
+    for kind, by_level in given.items():
+        print(f"  scored with {kind} noise: scale 68 % = {by_level['68']:.4f}, scale 95 % = {by_level['95']:.4f}")
+        scales[kind] = by_level
     table("Learning set", learning, scales)
     for path in check:
         table(f"Check: {path}", read([path]), scales)

@@ -404,16 +404,22 @@ PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> f
   return shift;
 }
 
-// δ_x of the fitted maxima as a DelayPosterior: the interval's numbers, and the replicates' density
-// centred on the estimate and widened as the interval was.
-DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vector<double> deltas) {
+// δ_x of the fitted maxima as a DelayPosterior: the interval's numbers, each level's half-widths
+// scaled about the estimate as calibrated for the curve's kind of noise (delta_interval_scales), and
+// the replicates' density centred on the estimate and widened as the bootstrap interval was.
+DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vector<double> deltas,
+                                     const IntervalScales& scales) {
   DelayPosterior delay;
   delay.mean = delay.map = delay.median = direct.estimate;
   delay.sd = direct.sd;
-  delay.ci68_low = direct.ci68_low;
-  delay.ci68_high = direct.ci68_high;
-  delay.ci95_low = direct.ci95_low;
-  delay.ci95_high = direct.ci95_high;
+  const auto scaled = [&](double bound, double scale) {
+    return direct.estimate + scale * (bound - direct.estimate);
+  };
+  delay.ci68_low = scaled(direct.ci68_low, scales.level68);
+  delay.ci68_high = scaled(direct.ci68_high, scales.level68);
+  // The 95 % interval never inside the 68 % one, whatever the two factors do to a skewed interval.
+  delay.ci95_low = std::min(scaled(direct.ci95_low, scales.level95), delay.ci68_low);
+  delay.ci95_high = std::max(scaled(direct.ci95_high, scales.level95), delay.ci68_high);
   std::vector<double> sorted = deltas;
   std::sort(sorted.begin(), sorted.end());
   const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
@@ -617,7 +623,8 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   DelayPosterior delay;
   if (options.delay_method == DelayMethod::fitted_maxima) {
     delay = delay_from_replicates(
-        direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }));
+        direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
+        delta_interval_scales.for_noise(r.filter_on_increments));
     r.delta_x_bias = direct.bias;
   } else {
     delay = infer_delay(g.curves.x0, g.curves.step, g.force(), r.filtered_force, r.energy_rate,
@@ -807,7 +814,12 @@ nlohmann::json delay_json(const AnalysisResult& r) {
                                   {"density_unit", unit_ratio("1", r.strain_unit)}};
   if (r.delay_method == DelayMethod::fitted_maxima) {
     delta["model"] =
-        "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise";
+        "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
+        "level's half-widths scaled by its calibrated factor (docs/analysis.md)";
+    const auto& scales = delta_interval_scales.for_noise(r.filter_on_increments);
+    delta["interval_scales"] = {{"noise", r.filter_on_increments ? "random walk" : "white"},
+                                {"ci68", scales.level68},
+                                {"ci95", scales.level95}};
     delta["bias"] = r.delta_x_bias;
     delta["sampling_distribution"] = density;
   } else {

@@ -88,6 +88,28 @@ struct AnalysisOptions {
   MechanismRules mechanism;
 };
 
+// How far δ_x's bootstrap intervals (fitted-maxima method) are stretched or shrunk about the
+// estimate, per level, so that they cover the truth at their nominal rates: the split-conformal
+// quantiles of the stretch each interval needed to reach the true δ_x on the calibration's tuning
+// set (1,200 curves, bench/interval_scales.py; docs/analysis.md, "Calibration"), rounded up to
+// four digits. One factor cannot serve both levels (the errors are heavier-tailed than the
+// bootstrap's spread), nor both kinds of noise the analysis tells apart
+// (AnalysisResult::filter_on_increments), so each kind has its own pair. One learned factor is not
+// applied: random-walk 68 % (0.4360) covered only 36-62 % of the untouched held-out set's bundles,
+// whose log-normal and gamma curves carry a smoothing bias the bootstrap does not see; that level
+// keeps the bootstrap's own interval (factor 1, conservative: 89-95 % there).
+struct IntervalScales {
+  double level68, level95;
+};
+struct DelayIntervalScales {
+  IntervalScales white_noise, random_walk;
+  constexpr const IntervalScales& for_noise(bool random_walk_dominates) const {
+    return random_walk_dominates ? random_walk : white_noise;
+  }
+};
+inline constexpr DelayIntervalScales delta_interval_scales{.white_noise = {0.6333, 0.7442},
+                                                           .random_walk = {1.0, 0.6119}};
+
 // A measured number with its 1-sigma uncertainty (0 when not estimated) and unit.
 struct Measured {
   double value = 0.0, error = 0.0;

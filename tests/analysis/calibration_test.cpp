@@ -18,7 +18,7 @@ namespace {
 using testing::add_noise;
 using testing::power_law_curve;
 
-// Over many noise seeds the 68 % and 95 % credible intervals must cover the true δ_x = 1/6 of the
+// Over many noise seeds the 68 % and 95 % intervals must cover the true δ_x = 1/6 of the
 // uniform bundle at their nominal rates. With 200 seeds the number covered is binomial: the bounds
 // below are the nominal rate ± 4 standard deviations, so a calibrated method fails with
 // probability ~1e-4 (and the seeds are fixed, so the outcome is reproducible).
@@ -39,10 +39,10 @@ TEST(DelayCalibration, IntervalsCoverAtTheirNominalRatesOnTheUniformBundle) {
   const auto bound = [&](double p) { return 4.0 * std::sqrt(seeds * p * (1.0 - p)); };
   RecordProperty("covered68", covered68);
   RecordProperty("covered95", covered95);
-  // The 68 % interval is conservative (docs/analysis.md: the smoothing-sensitivity term widens it
-  // and it covers 73-97 % on the calibration set): it must not cover less than promised. The 95 %
-  // interval is held to its nominal rate from both sides.
-  EXPECT_GE(covered68, 0.6827 * seeds - bound(0.6827)) << "68 % interval coverage";
+  // White noise: both levels are held to their nominal rates from both sides; each interval is
+  // scaled by its level's calibrated factor (analysis.hpp, delta_interval_scales), learned on
+  // other shapes.
+  EXPECT_NEAR(covered68, 0.6827 * seeds, bound(0.6827)) << "68 % interval coverage";
   EXPECT_NEAR(covered95, 0.95 * seeds, bound(0.95)) << "95 % interval coverage";
   std::printf("coverage 68%%: %d/%d, 95%%: %d/%d\n", covered68, seeds, covered95, seeds);
 }
@@ -71,8 +71,9 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
   }
   EXPECT_GE(accepted, curves - 1);
   const auto bound = [&](double p) { return 4.0 * std::sqrt(accepted * p * (1.0 - p)); };
-  EXPECT_GE(covered68, 0.6827 * accepted - bound(0.6827))
-      << "68 % interval coverage (conservative, see above)";
+  // The 68 % interval on random-walk noise is the bootstrap's own, conservative (docs/analysis.md:
+  // its calibrated factor failed the held-out check): it must not cover less than promised.
+  EXPECT_GE(covered68, 0.6827 * accepted - bound(0.6827)) << "68 % interval coverage";
   EXPECT_NEAR(covered95, 0.95 * accepted, std::max(bound(0.95), 2.0)) << "95 % interval coverage";
   std::printf("finite bundles: %d accepted of %d; coverage 68%%: %d, 95%%: %d\n", accepted, curves, covered68,
               covered95);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "analysis/analysis.hpp"
 #include "fbm/power_law.hpp"
 #include "support/tool.hpp"
 #include "synthetic_curves.hpp"
@@ -45,6 +46,14 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   EXPECT_NEAR(j["delta_x"]["value"].get<double>(), 1.0 / 6.0, 0.005);
   EXPECT_GT(j["delta_x"]["error"].get<double>(), 0.0);
   EXPECT_EQ(j["delta_x"]["method"], "fitted-maxima");
+  // White noise: the intervals carry the white-noise factors, and the 95 % one holds the 68 % one.
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["noise"], "white");
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["ci68"].get<double>(), delta_interval_scales.white_noise.level68);
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["ci95"].get<double>(), delta_interval_scales.white_noise.level95);
+  EXPECT_LE(j["delta_x"]["ci95"][0].get<double>(), j["delta_x"]["ci68"][0].get<double>());
+  EXPECT_GE(j["delta_x"]["ci95"][1].get<double>(), j["delta_x"]["ci68"][1].get<double>());
+  EXPECT_LT(j["delta_x"]["ci68"][0].get<double>(), j["delta_x"]["value"].get<double>());
+  EXPECT_GT(j["delta_x"]["ci68"][1].get<double>(), j["delta_x"]["value"].get<double>());
   EXPECT_EQ(j["delta_x"]["sampling_distribution"]["delta"].size(),
             j["delta_x"]["sampling_distribution"]["density"].size());
   EXPECT_EQ(j["uncertainty"]["replicates"], 200);
