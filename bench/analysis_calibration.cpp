@@ -48,9 +48,8 @@ int main(int argc, char** argv) {
   std::ofstream per_curve;
   if (argc > 3) {
     per_curve.open(argv[3]);
-    per_curve << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,ci68_low,ci68_"
-                 "high,ci95_low,"
-                 "ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd\n";
+    per_curve << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
+                 "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd\n";
     per_curve.precision(10);
   }
   const std::vector<Group> groups = {{"white 0.2 %", 0.002, 0},   {"white 1 %", 0.01, 0},
@@ -74,8 +73,7 @@ int main(int argc, char** argv) {
       const auto r = analyze_curve(c, {});
       if (per_curve.is_open()) {
         per_curve << which << ',' << g.name << ",\"" << s.name << "\"," << rows << ',' << seed << ','
-                  << (r.filter_on_increments ? "random walk" : "white") << ','
-                  << (r.accepted && r.delay ? 1 : 0) << ',' << t.delta();
+                  << noise_kind(r) << ',' << (r.accepted && r.delay ? 1 : 0) << ',' << t.delta();
         if (r.accepted && r.delay) {
           const auto& d = *r.delay;
           per_curve << ',' << d.mean << ',' << d.sd << ',' << d.ci68_low << ',' << d.ci68_high << ','

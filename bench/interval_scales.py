@@ -33,12 +33,34 @@ def score(row, level):
     return gap / reach if reach > 0.0 else math.inf
 
 
+COLUMNS = ("group", "noise", "accepted", "delta_x_true", "delta_x", "ci68_low", "ci68_high", "ci95_low",
+           "ci95_high")
+
+
 def read(paths):
     rows = []
     for path in paths:
-        with open(path, newline="", encoding="utf-8") as f:
-            rows += list(csv.DictReader(f))
+        try:
+            with open(path, newline="", encoding="utf-8") as f:
+                table = csv.DictReader(f)
+                missing = [c for c in COLUMNS if c not in (table.fieldnames or [])]
+                if missing:
+                    sys.exit(f"{path}: no column {', '.join(missing)}; give the per-curve file that "
+                             "bench/analysis_calibration writes as its third argument")
+                rows += [dict(r, source=path) for r in table]
+        except OSError as e:
+            sys.exit(f"{path}: cannot read it ({e.strerror}); name an existing per-curve file")
     return rows
+
+
+def parse_use(text):
+    """KIND=S68,S95 as (kind, {level: factor})."""
+    kind, _, factors = text.partition("=")
+    try:
+        s68, s95 = (float(f) for f in factors.split(","))
+    except ValueError:
+        sys.exit(f"interval_scales.py: --use '{text}': give KIND=S68,S95, e.g. --use \"random walk=1,0.6119\"")
+    return kind, {"68": s68, "95": s95}
 
 
 def conformal_scale(scores, level):
@@ -68,12 +90,16 @@ def table(title, rows, scales):
     for row in rows:
         groups.setdefault(row["group"], []).append(row)
     print(f"\n{title}\n")
-    print("| group | curves | read as random walk | accepted | δ_x 68 % (scaled) | δ_x 95 % (scaled) | δ_x 68 % (unscaled) | "
-          "δ_x 95 % (unscaled) |")
+    print("| group | curves | read as random walk | accepted | δ_x 68 % (scaled) | δ_x 95 % (scaled) | "
+          "δ_x 68 % (unscaled) | δ_x 95 % (unscaled) |")
     print("|---|---|---|---|---|---|---|---|")
     for name, members in list(groups.items()) + [("all", rows)]:
         accepted = [r for r in members if r["accepted"] == "1"]
         n = max(1, len(accepted))
+        for r in accepted:
+            if r["noise"] not in scales:
+                sys.exit(f"{r['source']}: no scale for {r['noise']} noise; learn on curves of that kind "
+                         "or give it with --use")
         covered = {lvl: sum(is_covered(r, lvl, scales[r["noise"]]) for r in accepted) for lvl, _ in LEVELS}
         raw = {lvl: sum(score(r, lvl) <= 1.0 for r in accepted) for lvl, _ in LEVELS}
         walks = sum(r["noise"] == "random walk" for r in members)
@@ -91,9 +117,8 @@ def main(argv):
     args = iter(argv)
     for arg in args:
         if arg == "--use":
-            kind, _, factors = next(args, "").partition("=")
-            s68, _, s95 = factors.partition(",")
-            given[kind] = {"68": float(s68), "95": float(s95)}
+            kind, by_level = parse_use(next(args, ""))
+            given[kind] = by_level
         else:
             learn.append(arg)
     if not learn:

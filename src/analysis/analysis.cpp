@@ -817,9 +817,8 @@ nlohmann::json delay_json(const AnalysisResult& r) {
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
         "level's half-widths scaled by its calibrated factor (docs/analysis.md)";
     const auto& scales = delta_interval_scales.for_noise(r.filter_on_increments);
-    delta["interval_scales"] = {{"noise", r.filter_on_increments ? "random walk" : "white"},
-                                {"ci68", scales.level68},
-                                {"ci95", scales.level95}};
+    delta["interval_scales"] = {
+        {"noise", noise_kind(r)}, {"ci68", scales.level68}, {"ci95", scales.level95}, {"unit", "1"}};
     delta["bias"] = r.delta_x_bias;
     delta["sampling_distribution"] = density;
   } else {
@@ -882,6 +881,8 @@ nlohmann::json mechanism_json(const AnalysisResult& r) {
 }
 
 }  // namespace
+
+std::string noise_kind(const AnalysisResult& r) { return r.filter_on_increments ? "random walk" : "white"; }
 
 nlohmann::json to_json(const AnalysisResult& r) {
   nlohmann::json j;

@@ -174,6 +174,10 @@ std::string precursor_order(double ci95_low, double ci95_high);
 // are not errors: they come back with accepted = false and the reason.
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks = {});
 
+// The kind of noise the analysis read in the curve, as written to analysis.json: "random walk" where
+// a random walk dominates it (the filter chosen on the increments), else "white".
+std::string noise_kind(const AnalysisResult& result);
+
 // Everything in the result except the grid curves, each number as {value, error, unit}; the
 // posterior as arrays.
 nlohmann::json to_json(const AnalysisResult& result);

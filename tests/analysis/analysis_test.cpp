@@ -69,6 +69,24 @@ TEST(AnalyzeCurve, PowerLawBundlesRecoverClosedForms) {
 
 // F peaks at 0.4, ℰ at 0.5: the force maximum comes first, so δ_x = −0.1 and the posterior must
 // say so (the prior admits both signs).
+// A finite bundle's noise is a random walk: the analysis reads it so, applies that kind's interval
+// factors (the 68 % one is the bootstrap's own, docs/analysis.md) and says in analysis.json which it
+// applied; the 95 % interval holds the 68 % one.
+TEST(AnalyzeCurve, RandomWalkNoiseGetsItsOwnIntervalFactors) {
+  const auto c = calibration::finite_bundle_curve(calibration::weibull(3), 1000, 100000, 7);
+  const auto r = analyze_curve(c, {});
+  ASSERT_TRUE(r.accepted) << r.rejection;
+  EXPECT_TRUE(r.filter_on_increments);
+  const auto j = to_json(r);
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["noise"], "random walk");
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["ci68"].get<double>(), delta_interval_scales.random_walk.level68);
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["ci95"].get<double>(), delta_interval_scales.random_walk.level95);
+  EXPECT_LE(r.delay->ci95_low, r.delay->ci68_low);
+  EXPECT_GE(r.delay->ci95_high, r.delay->ci68_high);
+  EXPECT_LT(r.delay->ci68_low, r.delay->mean);
+  EXPECT_GT(r.delay->ci68_high, r.delay->mean);
+}
+
 TEST(AnalyzeCurve, ForcePeakBeforeEnergyRatePeakGivesNegativeDelay) {
   Curve c = force_first_curve();
   add_noise(c, 0.01, 1e-5, 3);
