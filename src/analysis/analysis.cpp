@@ -481,12 +481,32 @@ std::optional<Grid> uniform_grid(const Curve& curve, const AnalysisOptions& opti
   return g;
 }
 
+// The smoothing cap under random-walk noise: the filter's period at most this share of the samples
+// from the curve's start to the filtered force's maximum. Chosen among 0.35, 0.5 and 0.7 on the
+// calibration's used sets (docs/analysis.md, "The smoothing cap"), by the rms error of δ_x.
+constexpr double longest_smoothing_share = 0.5;
+
+// On a bundle's increments the steps' noise can exceed all the slope's variation, so the
+// discrepancy rule accepts the floor of its search, a share of the whole record: a curve recorded
+// far past its peak is then averaged over most of the rise to it, which moves the maxima of broad
+// laws by up to 10 % of δ_x. The rise itself, measured with that first filter, caps the smoothing.
+void cap_smoothing_by_rise_to_peak(std::span<const double> force, FilterSettings& filter) {
+  FilterSettings pilot = filter;
+  const auto filtered = apply_filter(pilot, force);
+  const auto top = static_cast<double>(std::max_element(filtered.begin(), filtered.end()) - filtered.begin());
+  if (top > 0.0) limit_smoothing(filter, longest_smoothing_share * top);
+}
+
 // 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
 // the noise (finite bundles: every break is a step), the discrepancy principle runs on the
 // increments, which are then the white part: on the curves themselves it would take the walk's
-// low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed.
+// low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed; the rise to the force
+// peak then caps that choice. Under white noise the rule sees the curve's own shape and its choice
+// stands (a cap there only adds noise: docs/analysis.md).
 void choose_filter(const Grid& g, FilterSettings& filter, AnalysisResult& r) {
   const std::size_t n = g.size();
+  const bool automatic = (filter.kind == FilterKind::butterworth && filter.cutoff <= 0.0) ||
+                         (filter.kind == FilterKind::savitzky_golay && filter.savgol_window <= 0);
   const auto whole_curve_noise = estimate_noise(g.force(), g.energy(), 0, n - 1);
   const auto walk_dominated = [](const NoiseComponents& c) {
     return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
@@ -501,6 +521,7 @@ void choose_filter(const Grid& g, FilterSettings& filter, AnalysisResult& r) {
     }
     const std::span<const double> steps[] = {force_steps, energy_steps};
     choose_shared_filter(filter, steps);
+    if (automatic) cap_smoothing_by_rise_to_peak(g.force(), filter);
   } else {
     const std::span<const double> raw[] = {g.force(), g.energy()};
     choose_shared_filter(filter, raw);
@@ -622,9 +643,11 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   const auto& boot = run.boot;
   DelayPosterior delay;
   if (options.delay_method == DelayMethod::fitted_maxima) {
+    if (options.calibrated_intervals)
+      r.interval_scales = delta_interval_scales.for_noise(r.filter_on_increments);
     delay = delay_from_replicates(
         direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
-        delta_interval_scales.for_noise(r.filter_on_increments));
+        r.interval_scales);
     r.delta_x_bias = direct.bias;
   } else {
     delay = infer_delay(g.curves.x0, g.curves.step, g.force(), r.filtered_force, r.energy_rate,
@@ -816,9 +839,10 @@ nlohmann::json delay_json(const AnalysisResult& r) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
         "level's half-widths scaled by its calibrated factor (docs/analysis.md)";
-    const auto& scales = delta_interval_scales.for_noise(r.filter_on_increments);
-    delta["interval_scales"] = {
-        {"noise", noise_kind(r)}, {"ci68", scales.level68}, {"ci95", scales.level95}, {"unit", "1"}};
+    delta["interval_scales"] = {{"noise", noise_kind(r)},
+                                {"ci68", r.interval_scales.level68},
+                                {"ci95", r.interval_scales.level95},
+                                {"unit", "1"}};
     delta["bias"] = r.delta_x_bias;
     delta["sampling_distribution"] = density;
   } else {

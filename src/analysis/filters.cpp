@@ -278,6 +278,15 @@ void choose_shared_filter(FilterSettings& settings, std::span<const std::span<co
   }
 }
 
+void limit_smoothing(FilterSettings& settings, double longest_period) {
+  if (settings.kind == FilterKind::butterworth)
+    settings.cutoff = std::max(settings.cutoff, std::min(0.95, 2.0 / longest_period));
+  else if (settings.kind == FilterKind::savitzky_golay)
+    settings.savgol_window =
+        std::max(odd_at_least(settings.savgol_order + 2),
+                 std::min(settings.savgol_window, odd_at_least(static_cast<int>(longest_period) - 1)));
+}
+
 std::size_t minimum_samples(const FilterSettings& settings) {
   switch (settings.kind) {
     case FilterKind::butterworth: {

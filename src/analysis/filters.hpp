@@ -83,6 +83,13 @@ std::vector<double> apply_filter(FilterSettings& settings, std::span<const doubl
 // narrower). Fills in `settings`.
 void choose_shared_filter(FilterSettings& settings, std::span<const std::span<const double>> curves);
 
+// Caps the smoothing so that the filter averages over no more than `longest_period` samples (a
+// Butterworth cutoff of at least 2/longest_period Nyquist units, at most 0.95; a Savitzky–Golay
+// window of at most longest_period samples). Used after an automatic choice, whose own floor is a
+// share of the whole curve: a curve recorded far past its peak would otherwise be smoothed over a
+// width set by how long it was recorded, not by its features.
+void limit_smoothing(FilterSettings& settings, double longest_period);
+
 // Minimum number of samples the filter needs.
 std::size_t minimum_samples(const FilterSettings& settings);
 

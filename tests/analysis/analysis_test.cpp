@@ -87,6 +87,28 @@ TEST(AnalyzeCurve, RandomWalkNoiseGetsItsOwnIntervalFactors) {
   EXPECT_GT(r.delay->ci68_high, r.delay->mean);
 }
 
+// A broad law's bundle recorded to almost four times its force peak: on the increments the steps'
+// noise hides the slope's shape, so the discrepancy rule alone would smooth over a quarter of the
+// record (0.75, about x_c = 0.78) and put δ_x 8-12 % low. The cap ties the smoothing to the rise
+// to the peak instead (a scatter of ~4 % remains at 10^5 fibers).
+TEST(AnalyzeCurve, RandomWalkSmoothingIsCappedByTheRiseToTheForcePeak) {
+  const auto shape = calibration::gamma_shape(2.5);
+  const auto truth = calibration::truth(shape);
+  const auto c = calibration::finite_bundle_curve(shape, 300, 100000, 1);
+  const auto r = analyze_curve(c, {});
+  ASSERT_TRUE(r.accepted) << r.rejection;
+  ASSERT_TRUE(r.filter_on_increments);
+  const double samples_to_peak = (r.force_peak->x - r.x0) / r.step;
+  const double period = 2.0 / r.filter.cutoff;  // samples
+  EXPECT_LE(period, 0.51 * samples_to_peak);
+  EXPECT_NEAR(r.delay->mean, truth.delta(), 0.05 * truth.delta());
+  AnalysisOptions fixed;  // the uncapped choice, for contrast: the floor's cutoff, 8/(n - 1)
+  fixed.filter.cutoff = 8.0 / static_cast<double>(r.resample.output_rows - 1);
+  const auto floor = analyze_curve(c, fixed);
+  ASSERT_TRUE(floor.delay);
+  EXPECT_LT(floor.delay->mean, 0.93 * truth.delta());
+}
+
 TEST(AnalyzeCurve, ForcePeakBeforeEnergyRatePeakGivesNegativeDelay) {
   Curve c = force_first_curve();
   add_noise(c, 0.01, 1e-5, 3);

@@ -143,5 +143,29 @@ TEST(AutomaticFilter, SmoothsNoiseButKeepsThePeak) {
   }
 }
 
+// The cap on smoothing only ever weakens a filter, to a period of at most the given samples, and
+// never past the weakest filter each kind has.
+TEST(AutomaticFilter, LimitOnSmoothingOnlyWeakensTheFilter) {
+  FilterSettings strong;
+  strong.cutoff = 0.01;  // a period of 200 samples
+  limit_smoothing(strong, 50.0);
+  EXPECT_DOUBLE_EQ(strong.cutoff, 0.04);
+  FilterSettings weak;
+  weak.cutoff = 0.1;  // 20 samples: already within 50
+  limit_smoothing(weak, 50.0);
+  EXPECT_DOUBLE_EQ(weak.cutoff, 0.1);
+  limit_smoothing(weak, 1.0);
+  EXPECT_DOUBLE_EQ(weak.cutoff, 0.95);
+  FilterSettings window;
+  window.kind = FilterKind::savitzky_golay;
+  window.savgol_window = 101;
+  limit_smoothing(window, 31.0);
+  EXPECT_EQ(window.savgol_window, 31);
+  limit_smoothing(window, 40.0);
+  EXPECT_EQ(window.savgol_window, 31);
+  limit_smoothing(window, 2.0);
+  EXPECT_EQ(window.savgol_window, 5);  // the smallest window of a cubic
+}
+
 }  // namespace
 }  // namespace rupture::analysis
