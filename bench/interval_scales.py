@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Learns the per-level scales of δ_x's intervals and checks them (docs/analysis.md, "Calibration").
 
-Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--use KIND=S68,S95 ...] [--check CHECK.csv ...]
+Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--use KIND=S68,S95 ...] [--skip-shape NAME ...]
+                          [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -11,7 +12,9 @@ each kind of noise the analysis tells apart (the `noise` column: white, random w
 src/analysis/analysis.hpp applies them. The check files are then scored with those scales and never
 used to choose them. `--use "random walk=1,0.6119"` scores with given factors for one kind instead of
 the learned ones (what src/analysis/analysis.hpp applies where a learned factor failed its check).
-As in the analysis, the 95 % interval is never inside the 68 % one: a curve counts as covered at
+`--skip-shape "uniform [0.3,0.8]"` leaves that shape's curves out of learning and checking alike (a
+case outside the calibration's domain, documented on its own). As in the analysis, the 95 % interval
+is never inside the 68 % one: a curve counts as covered at
 95 % when either scaled interval reaches the truth.
 Standard library only, so it runs wherever the bench does.
 """
@@ -37,7 +40,7 @@ COLUMNS = ("group", "noise", "accepted", "delta_x_true", "delta_x", "ci68_low", 
            "ci95_high")
 
 
-def read(paths):
+def read(paths, skipped=()):
     rows = []
     for path in paths:
         try:
@@ -47,7 +50,7 @@ def read(paths):
                 if missing:
                     sys.exit(f"{path}: no column {', '.join(missing)}; give the per-curve file that "
                              "bench/analysis_calibration writes as its third argument")
-                rows += [dict(r, source=path) for r in table]
+                rows += [dict(r, source=path) for r in table if r.get("shape") not in skipped]
         except OSError as e:
             sys.exit(f"{path}: cannot read it ({e.strerror}); name an existing per-curve file")
     return rows
@@ -113,17 +116,19 @@ def main(argv):
         argv, check = argv[:cut], argv[cut + 1:]
     else:
         check = []
-    learn, given = [], {}
+    learn, given, skipped = [], {}, set()
     args = iter(argv)
     for arg in args:
         if arg == "--use":
             kind, by_level = parse_use(next(args, ""))
             given[kind] = by_level
+        elif arg == "--skip-shape":
+            skipped.add(next(args, ""))
         else:
             learn.append(arg)
     if not learn:
         sys.exit("interval_scales.py: name at least one per-curve file to learn from")
-    learning = read(learn)
+    learning = read(learn, skipped)
     scales = learn_scales(learning)
     print(f"learned on {', '.join(learn)}:")
     for kind, by_level in scales.items():
@@ -135,7 +140,7 @@ def main(argv):
         scales[kind] = by_level
     table("Learning set", learning, scales)
     for path in check:
-        table(f"Check: {path}", read([path]), scales)
+        table(f"Check: {path}", read([path], skipped), scales)
 
 
 if __name__ == "__main__":

@@ -405,7 +405,7 @@ PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> f
 }
 
 // δ_x of the fitted maxima as a DelayPosterior: the interval's numbers, each level's half-widths
-// scaled about the estimate as calibrated for the curve's kind of noise (delta_interval_scales), and
+// scaled about the estimate by the factors for the curve's kind of noise (delta_interval_scales), and
 // the replicates' density centred on the estimate and widened as the bootstrap interval was.
 DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vector<double> deltas,
                                      const IntervalScales& scales) {
@@ -838,7 +838,8 @@ nlohmann::json delay_json(const AnalysisResult& r) {
   if (r.delay_method == DelayMethod::fitted_maxima) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
-        "level's half-widths scaled by its calibrated factor (docs/analysis.md)";
+        "level's half-widths scaled by interval_scales (1: none has passed its held-out check, "
+        "docs/analysis.md)";
     delta["interval_scales"] = {{"noise", noise_kind(r)},
                                 {"ci68", r.interval_scales.level68},
                                 {"ci95", r.interval_scales.level95},
