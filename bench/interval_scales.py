@@ -123,12 +123,20 @@ def main(argv):
             kind, by_level = parse_use(next(args, ""))
             given[kind] = by_level
         elif arg == "--skip-shape":
-            skipped.add(next(args, ""))
+            name = next(args, "")
+            if not name:
+                sys.exit("interval_scales.py: --skip-shape needs a shape name as the files write it, "
+                         "e.g. --skip-shape \"uniform [0.3,0.8]\"")
+            skipped.add(name)
         else:
             learn.append(arg)
     if not learn:
         sys.exit("interval_scales.py: name at least one per-curve file to learn from")
     learning = read(learn, skipped)
+    present = {r.get("shape") for r in read(learn + check)}
+    for name in sorted(skipped - present):
+        sys.exit(f"interval_scales.py: --skip-shape '{name}': no curve of that shape in the files; "
+                 "give the name as their `shape` column writes it")
     scales = learn_scales(learning)
     print(f"learned on {', '.join(learn)}:")
     for kind, by_level in scales.items():

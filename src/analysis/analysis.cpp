@@ -483,7 +483,8 @@ std::optional<Grid> uniform_grid(const Curve& curve, const AnalysisOptions& opti
 
 // The smoothing cap under random-walk noise: the filter's period at most this share of the samples
 // from the curve's start to the filtered force's maximum. Chosen among 0.35, 0.5 and 0.7 on the
-// calibration's used sets (docs/analysis.md, "The smoothing cap"), by the rms error of δ_x.
+// calibration's used sets (docs/analysis.md, "The smoothing cap and the interval scales learned
+// again"), by the rms error of δ_x.
 constexpr double longest_smoothing_share = 0.5;
 
 // On a bundle's increments the steps' noise can exceed all the slope's variation, so the
@@ -505,8 +506,7 @@ void cap_smoothing_by_rise_to_peak(std::span<const double> force, FilterSettings
 // stands (a cap there only adds noise: docs/analysis.md).
 void choose_filter(const Grid& g, FilterSettings& filter, AnalysisResult& r) {
   const std::size_t n = g.size();
-  const bool automatic = (filter.kind == FilterKind::butterworth && filter.cutoff <= 0.0) ||
-                         (filter.kind == FilterKind::savitzky_golay && filter.savgol_window <= 0);
+  const bool automatic = chooses_own_strength(filter);
   const auto whole_curve_noise = estimate_noise(g.force(), g.energy(), 0, n - 1);
   const auto walk_dominated = [](const NoiseComponents& c) {
     return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
@@ -838,8 +838,8 @@ nlohmann::json delay_json(const AnalysisResult& r) {
   if (r.delay_method == DelayMethod::fitted_maxima) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
-        "level's half-widths scaled by interval_scales (1: none has passed its held-out check, "
-        "docs/analysis.md)";
+        "level's half-widths scaled by interval_scales (calibrated for white noise; 1, the bootstrap's own, "
+        "on a random walk: docs/analysis.md)";
     delta["interval_scales"] = {{"noise", noise_kind(r)},
                                 {"ci68", r.interval_scales.level68},
                                 {"ci95", r.interval_scales.level95},

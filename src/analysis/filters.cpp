@@ -266,12 +266,18 @@ std::vector<double> apply_filter(FilterSettings& settings, std::span<const doubl
   return filter_with(settings, y);
 }
 
+bool chooses_own_strength(const FilterSettings& settings) {
+  return (settings.kind == FilterKind::butterworth && settings.cutoff <= 0.0) ||
+         (settings.kind == FilterKind::savitzky_golay && settings.savgol_window <= 0);
+}
+
 void choose_shared_filter(FilterSettings& settings, std::span<const std::span<const double>> curves) {
-  if (settings.kind == FilterKind::butterworth && settings.cutoff <= 0.0) {
+  if (!chooses_own_strength(settings)) return;
+  if (settings.kind == FilterKind::butterworth) {
     double cutoff = 1.0;
     for (auto y : curves) cutoff = std::min(cutoff, choose_strength(settings, y));
     settings.cutoff = cutoff;
-  } else if (settings.kind == FilterKind::savitzky_golay && settings.savgol_window <= 0) {
+  } else {
     int window = 0;
     for (auto y : curves) window = std::max(window, static_cast<int>(choose_strength(settings, y)));
     settings.savgol_window = window;

@@ -83,6 +83,9 @@ std::vector<double> apply_filter(FilterSettings& settings, std::span<const doubl
 // narrower). Fills in `settings`.
 void choose_shared_filter(FilterSettings& settings, std::span<const std::span<const double>> curves);
 
+// Whether the settings leave the strength to the automatic choice (no cutoff or window given).
+bool chooses_own_strength(const FilterSettings& settings);
+
 // Caps the smoothing so that the filter averages over no more than `longest_period` samples (a
 // Butterworth cutoff of at least 2/longest_period Nyquist units, at most 0.95; a Savitzky–Golay
 // window of at most longest_period samples). Used after an automatic choice, whose own floor is a

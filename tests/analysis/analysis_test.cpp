@@ -67,10 +67,8 @@ TEST(AnalyzeCurve, PowerLawBundlesRecoverClosedForms) {
   }
 }
 
-// F peaks at 0.4, ℰ at 0.5: the force maximum comes first, so δ_x = −0.1 and the posterior must
-// say so (the prior admits both signs).
 // A finite bundle's noise is a random walk: the analysis reads it so, applies that kind's interval
-// factors (the 68 % one is the bootstrap's own, docs/analysis.md) and says in analysis.json which it
+// factors (both 1, the bootstrap's own: docs/analysis.md) and says in analysis.json which it
 // applied; the 95 % interval holds the 68 % one.
 TEST(AnalyzeCurve, RandomWalkNoiseGetsItsOwnIntervalFactors) {
   const auto c = calibration::finite_bundle_curve(calibration::weibull(3), 1000, 100000, 7);
@@ -109,6 +107,8 @@ TEST(AnalyzeCurve, RandomWalkSmoothingIsCappedByTheRiseToTheForcePeak) {
   EXPECT_LT(floor.delay->mean, 0.93 * truth.delta());
 }
 
+// F peaks at 0.4, ℰ at 0.5: the force maximum comes first, so δ_x = −0.1 and the posterior must
+// say so (the prior admits both signs).
 TEST(AnalyzeCurve, ForcePeakBeforeEnergyRatePeakGivesNegativeDelay) {
   Curve c = force_first_curve();
   add_noise(c, 0.01, 1e-5, 3);
