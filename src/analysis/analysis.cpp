@@ -10,6 +10,7 @@
 #include "analysis/bootstrap.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
+#include "io/quantity.hpp"
 
 namespace rupture::analysis {
 
@@ -58,15 +59,8 @@ std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string&
   return "1";
 }
 
-// Unit of a quotient, e.g. "mJ" / "%" -> "mJ/%"; a dimensionless denominator drops out.
-std::string unit_ratio(const std::string& numerator, const std::string& denominator) {
-  if (denominator == "1") return numerator;
-  return numerator + "/" +
-         (denominator.find('/') != std::string::npos ? "(" + denominator + ")" : denominator);
-}
-
 std::string per_strain(const std::string& unit, const std::string& strain_unit) {
-  return unit_ratio(unit, strain_unit);
+  return io::unit_ratio(unit, strain_unit);
 }
 
 // Height of the global maximum above the higher of the lowest points on either side.
@@ -761,9 +755,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
 
 namespace {
 
-nlohmann::json to_json(const Measured& m) {
-  return {{"value", m.value}, {"error", m.error}, {"unit", m.unit}};
-}
+nlohmann::json to_json(const Measured& m) { return io::quantity(m.value, m.error, m.unit); }
 
 template <class T>
 nlohmann::json optional_json(const std::optional<T>& v) {
@@ -777,8 +769,7 @@ nlohmann::json optional_json(const std::optional<T>& v) {
 nlohmann::json peak_json(const std::optional<PeakFit>& fit, const std::string& unit) {
   if (!fit) return nullptr;
   nlohmann::json j = {{"found", fit->found},
-                      {"window", {fit->window_low, fit->window_high}},
-                      {"window_unit", unit},
+                      {"window", io::quantity({fit->window_low, fit->window_high}, unit)},
                       {"points", fit->points}};
   if (!fit->found) j["problem"] = fit->problem;
   return j;
@@ -807,8 +798,8 @@ nlohmann::json filter_json(const AnalysisResult& r) {
   if (r.filter.kind == FilterKind::butterworth) {
     filter["order"] = r.filter.butterworth_order;
     filter["cutoff_nyquist"] = r.filter.cutoff;
-    filter["cutoff_per_strain"] = {{"value", r.filter.cutoff / (2.0 * r.step)},
-                                   {"unit", unit_ratio("1", r.strain_unit)}};
+    filter["cutoff_per_strain"] =
+        io::quantity(r.filter.cutoff / (2.0 * r.step), io::unit_ratio("1", r.strain_unit));
     filter["method"] = "forward-backward second-order sections, odd padding (sosfiltfilt)";
   } else if (r.filter.kind == FilterKind::savitzky_golay) {
     filter["window_samples"] = r.filter.savgol_window;
@@ -831,31 +822,28 @@ nlohmann::json delay_json(const AnalysisResult& r) {
                           {"sd", d.sd},
                           {"ci68", {d.ci68_low, d.ci68_high}},
                           {"ci95", {d.ci95_low, d.ci95_high}}};
-  const nlohmann::json density = {{"delta", d.delta},
-                                  {"density", d.density},
-                                  {"delta_unit", r.strain_unit},
-                                  {"density_unit", unit_ratio("1", r.strain_unit)}};
+  const nlohmann::json density = {{"delta", io::quantity(d.delta, r.strain_unit)},
+                                  {"density", io::quantity(d.density, io::unit_ratio("1", r.strain_unit))}};
   if (r.delay_method == DelayMethod::fitted_maxima) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
         "level's half-widths scaled by interval_scales (calibrated for white noise; 1, the bootstrap's own, "
         "on a random walk: docs/analysis.md)";
-    delta["interval_scales"] = {{"noise", noise_kind(r)},
-                                {"ci68", r.interval_scales.level68},
-                                {"ci95", r.interval_scales.level95},
-                                {"unit", "1"}};
+    delta["interval_scales"] = {
+        {"noise", noise_kind(r)}, {"ci68", r.interval_scales.level68}, {"ci95", r.interval_scales.level95}};
     delta["bias"] = r.delta_x_bias;
     delta["sampling_distribution"] = density;
   } else {
     delta["model"] = "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)";
-    delta["prior"] = {{"kind", "uniform"}, {"range", {d.prior_low, d.prior_high}}};
-    delta["misfit_window"] = {d.window_low, d.window_high};
+    delta["prior"] = {{"kind", "uniform"},
+                      {"range", io::quantity({d.prior_low, d.prior_high}, r.strain_unit)}};
+    delta["misfit_window"] = io::quantity({d.window_low, d.window_high}, r.strain_unit);
     delta["misfit_samples"] = d.window_samples;
-    delta["force_noise_sigma"] = {{"value", d.noise_sigma}, {"unit", r.force_unit}};
-    delta["misfit_scale"] = {{"value", d.misfit_scale}, {"unit", r.force_unit}};
+    delta["force_noise_sigma"] = io::quantity(d.noise_sigma, r.force_unit);
+    delta["misfit_scale"] = io::quantity(d.misfit_scale, r.force_unit);
     delta["correlation_length_samples"] = d.correlation;
-    delta["scale_at_map"] = {{"value", d.scale_at_map},
-                             {"unit", unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit))}};
+    delta["scale_at_map"] =
+        io::quantity(d.scale_at_map, io::unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit)));
     delta["at_prior_bound"] = d.at_prior_bound;
     delta["posterior"] = density;
   }
@@ -865,15 +853,15 @@ nlohmann::json delay_json(const AnalysisResult& r) {
 // How the uncertainties were found: the bootstrap's window, replicates and fitted noise model.
 nlohmann::json uncertainty_json(const AnalysisResult& r) {
   const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
-    return nlohmann::json{{"white_sd", c.white}, {"walk_step_sd", c.walk}, {"unit", unit}};
+    return nlohmann::json{{"white_sd", io::quantity(c.white, unit)},
+                          {"walk_step_sd", io::quantity(c.walk, unit)}};
   };
   return {{"method",
            "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
            "filtered curves, every replicate filtered, differentiated and fitted again"},
           {"replicates", r.bootstrap_replicates},
           {"failed_replicates", r.bootstrap_failed},
-          {"window", {r.bootstrap_window_low, r.bootstrap_window_high}},
-          {"window_unit", r.strain_unit},
+          {"window", io::quantity({r.bootstrap_window_low, r.bootstrap_window_high}, r.strain_unit)},
           {"noise",
            {{"force", noise_json(r.noise_model.force, r.force_unit)},
             {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
@@ -895,7 +883,7 @@ nlohmann::json mechanism_json(const AnalysisResult& r) {
           {"features_say", to_string(r.mechanism->mechanism)},
           {"reason", r.mechanism->reason},
           {"features",
-           {{"critical_strain_percent", optional_json(f.critical_strain_percent)},
+           {{"critical_strain", io::quantity(f.critical_strain_percent, "%")},
             {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
             {"significant_force_maxima", f.force_maxima},
             {"break_spread_over_x_c", optional_json(f.break_spread)},
@@ -914,7 +902,6 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["source"] = r.source;
   j["accepted"] = r.accepted;
   j["rejection"] = r.accepted ? nlohmann::json(nullptr) : nlohmann::json(r.rejection);
-  j["units"] = {{"strain", r.strain_unit}, {"force", r.force_unit}, {"energy", r.energy_unit}};
   j["warnings"] = r.warnings;
   j["resample"] = {{"input_rows", r.resample.input_rows},
                    {"was_sorted", r.resample.was_sorted},
@@ -923,22 +910,18 @@ nlohmann::json to_json(const AnalysisResult& r) {
                    {"resampled", r.resample.resampled},
                    {"output_rows", r.resample.output_rows},
                    {"block_average", r.resample.block_average},
-                   {"step", {{"value", r.resample.step}, {"unit", r.strain_unit}}}};
+                   {"step", io::quantity(r.resample.step, r.strain_unit)}};
   j["filter"] = filter_json(r);
   j["derivative"] = {{"method", "Savitzky-Golay, cubic"}, {"window_samples", r.derivative_window}};
   // The curves the maxima were sought on, on the uniform grid x_i = x0 + i * step: what a figure
   // draws, without running the analysis again (empty when the curve was rejected before filtering).
-  j["curves"] = {{"x0", {{"value", r.x0}, {"unit", r.strain_unit}}},
-                 {"step", {{"value", r.step}, {"unit", r.strain_unit}}},
-                 {"filtered_force", r.filtered_force},
-                 {"filtered_elastic_energy", r.filtered_energy},
-                 {"energy_rate", r.energy_rate},
-                 {"units",
-                  {{"filtered_force", r.force_unit},
-                   {"filtered_elastic_energy", r.energy_unit},
-                   {"energy_rate", per_strain(r.energy_unit, r.strain_unit)}}}};
-  j["noise"] = {{"force", {{"value", r.force_noise}, {"unit", r.force_unit}}},
-                {"elastic_energy", {{"value", r.energy_noise}, {"unit", r.energy_unit}}},
+  j["curves"] = {{"x0", io::quantity(r.x0, r.strain_unit)},
+                 {"step", io::quantity(r.step, r.strain_unit)},
+                 {"filtered_force", io::quantity(r.filtered_force, r.force_unit)},
+                 {"filtered_elastic_energy", io::quantity(r.filtered_energy, r.energy_unit)},
+                 {"energy_rate", io::quantity(r.energy_rate, per_strain(r.energy_unit, r.strain_unit))}};
+  j["noise"] = {{"force", io::quantity(r.force_noise, r.force_unit)},
+                {"elastic_energy", io::quantity(r.energy_noise, r.energy_unit)},
                 {"estimator", "rms of third differences / sqrt(20), largest 0.5 % trimmed"}};
   j["x_c"] = optional_json(r.x_c);
   j["F_c"] = optional_json(r.F_c);
@@ -952,7 +935,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
                     {"method", "cubic least squares around the largest sample; stationary point"}};
   j["delta_x"] = delay_json(r);
   j["delta_x_direct"] = optional_json(r.delta_x_direct);
-  j["loading_phase_end"] = {{"value", r.loading_phase_end}, {"unit", r.strain_unit}};
+  j["loading_phase_end"] = io::quantity(r.loading_phase_end, r.strain_unit);
   j["uncertainty"] = uncertainty_json(r);
   j["Gamma"] = optional_json(r.Gamma);
   j["A_r"] = optional_json(r.A_r);

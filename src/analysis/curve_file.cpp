@@ -2,6 +2,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/quantity.hpp"
 #include "rupture/version.hpp"
 
 namespace rupture::analysis {
@@ -49,7 +50,9 @@ std::optional<std::pair<double, double>> glued_layer_heights(const std::filesyst
   try {
     const auto run = nlohmann::json::parse(io::read_text_file(run_json, io::max_config_bytes));
     const auto& layers = run.at("sample").at("glued_layer_heights");
-    return std::pair{layers.at("bottom").get<double>(), layers.at("top").get<double>()};
+    const auto bottom = io::quantity_value(layers.at("bottom")), top = io::quantity_value(layers.at("top"));
+    if (!bottom || !top) return std::nullopt;
+    return std::pair{*bottom, *top};
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;  // a run.json of rupture 0.1, or not rupture's
   }

@@ -7,6 +7,7 @@
 
 #include "analysis/peak_fit.hpp"
 #include "fbm/power_law.hpp"
+#include "io/quantity.hpp"
 
 namespace rupture::analysis {
 
@@ -131,26 +132,28 @@ MonitorSummary Monitor::summary() const {
   return s;
 }
 
-nlohmann::json to_json(const MonitorSummary& s) {
-  const auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+nlohmann::json to_json(const MonitorSummary& s, const std::string& strain_unit,
+                       const std::string& energy_unit) {
   nlohmann::json j = {{"samples", s.samples}};
   if (s.warning) {
     const auto& w = *s.warning;
+    const std::string rate_unit = io::unit_ratio(energy_unit, strain_unit);
     j["warning"] = {{"sample", w.sample},
-                    {"strain", w.strain},
-                    {"x_p", {{"value", w.x_p}, {"error", w.x_p_error}}},
-                    {"Erate_max", {{"value", w.Erate_max}, {"error", w.Erate_max_error}}},
-                    {"x_c_predicted", {w.x_c.low, w.x_c.high}},
-                    {"E_max_predicted", {w.E_max.low, w.E_max.high}},
+                    {"strain", io::quantity(w.strain, strain_unit)},
+                    {"x_p", io::quantity(w.x_p, w.x_p_error, strain_unit)},
+                    {"Erate_max", io::quantity(w.Erate_max, w.Erate_max_error, rate_unit)},
+                    {"x_c_predicted", io::quantity({w.x_c.low, w.x_c.high}, strain_unit)},
+                    {"E_max_predicted", io::quantity({w.E_max.low, w.E_max.high}, energy_unit)},
                     {"in_time", w.in_time},
-                    {"max_row_spacing_for_a_timely_warning", w.max_row_spacing}};
+                    {"max_row_spacing_for_a_timely_warning", io::quantity(w.max_row_spacing, strain_unit)}};
   } else {
     j["warning"] = nullptr;
   }
+  const auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   j["force_peaked_before_warning"] = s.force_peaked_before_warning;
-  j["x_c_observed"] = optional(s.x_c);
-  j["E_max_observed"] = optional(s.E_max);
-  j["lead"] = optional(s.lead);
+  j["x_c_observed"] = io::quantity(s.x_c, strain_unit);
+  j["E_max_observed"] = io::quantity(s.E_max, energy_unit);
+  j["lead"] = io::quantity(s.lead, strain_unit);
   j["x_c_held"] = optional(s.x_c_held);
   j["E_max_held"] = optional(s.E_max_held);
   return j;

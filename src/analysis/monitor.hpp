@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace rupture::analysis {
@@ -65,7 +66,8 @@ struct MonitorSummary {
 
 // The warning (or null) and the outcome, in the input's strain and energy units: the "monitor"
 // block of `rupture monitor --json` and of a run's run.json.
-nlohmann::json to_json(const MonitorSummary& summary);
+nlohmann::json to_json(const MonitorSummary& summary, const std::string& strain_unit,
+                       const std::string& energy_unit);
 
 class Monitor {
  public:

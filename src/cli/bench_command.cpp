@@ -20,6 +20,7 @@
 #include "core/random.hpp"
 #include "dem/system.hpp"
 #include "io/atomic_file.hpp"
+#include "io/quantity.hpp"
 #include "loading/config.hpp"
 #include "loading/ramp.hpp"
 #include "loading/run.hpp"
@@ -110,17 +111,12 @@ nlohmann::json to_json(const BenchResult& r, const std::string& sample) {
           {"broken_bonds", r.broken},
           {"steps", r.steps},
           {"threads", r.threads},
-          {"wall_s", r.wall_s},
-          {"cpu_s", r.cpu_s},
-          {"particle_steps_per_s", r.rate()},
-          {"stage_seconds",
-           {{"neighbours", r.stages.neighbours},
-            {"integrate", r.stages.integrate},
-            {"forces", r.stages.forces},
-            {"plates", r.stages.plates},
-            {"breaks", r.stages.breaks}}},
+          {"wall_time", io::quantity(r.wall_s, "s")},
+          {"cpu_time", io::quantity(r.cpu_s, "s")},
+          {"throughput", io::quantity(r.rate(), "particle-steps/s")},
+          {"stage_times", loading::to_json(r.stages)},
           {"neighbour_rebuilds", r.rebuilds},
-          {"bytes_per_particle", double(r.memory_bytes) / double(r.particles)},
+          {"memory_per_particle", io::quantity(double(r.memory_bytes) / double(r.particles), "B")},
           {"state_hash", fmt::format("{:016x}", r.hash)}};
 }
 
@@ -166,10 +162,10 @@ nlohmann::json bench_run(const BenchOptions& options, int threads) {
           {"steps", summary.steps},
           {"stop_reason", summary.stop_reason},
           {"broken_bonds", summary.broken_bonds},
-          {"wall_s", report["wall_s"]},
-          {"cpu_s", cpu_s},
-          {"particle_steps_per_s", report["particle_steps_per_s"]},
-          {"stage_seconds", report["stage_seconds"]},
+          {"wall_time", report["wall_time"]},
+          {"cpu_time", io::quantity(cpu_s, "s")},
+          {"throughput", report["throughput"]},
+          {"stage_times", report["stage_times"]},
           {"neighbour_rebuilds", report["neighbour_rebuilds"]},
           {"outputs_hash", fmt::format("{:016x}", outputs.hash)}};
 }
@@ -184,13 +180,13 @@ void print_run_benches(const BenchOptions& options) {
     const nlohmann::json r = bench_run(options, threads);
     results.push_back(r);
     if (options.json) continue;
-    const double wall = r["wall_s"].get<double>();
-    const auto& stages = r["stage_seconds"];
+    const auto value = [](const nlohmann::json& q) { return io::quantity_value(q).value_or(NAN); };
+    const double wall = value(r["wall_time"]);
+    const auto& stages = r["stage_times"];
     fmt::print("{:>7} {:>9} {:>9.3f} {:>8.3f} {:>12.4g} {:>6.0f}% {:>6.0f}% {:>6.0f}% {:>8} {:>16}\n",
-               threads, r["steps"].get<std::uint64_t>(), wall, r["cpu_s"].get<double>(),
-               r["particle_steps_per_s"].get<double>(), 100 * stages["forces"].get<double>() / wall,
-               100 * stages["integrate"].get<double>() / wall,
-               100 * stages["neighbours"].get<double>() / wall, r["neighbour_rebuilds"].get<std::uint64_t>(),
+               threads, r["steps"].get<std::uint64_t>(), wall, value(r["cpu_time"]), value(r["throughput"]),
+               100 * value(stages["forces"]) / wall, 100 * value(stages["integrate"]) / wall,
+               100 * value(stages["neighbours"]) / wall, r["neighbour_rebuilds"].get<std::uint64_t>(),
                r["outputs_hash"].get<std::string>());
   }
   if (options.json)

@@ -102,7 +102,7 @@ void add_theory(CLI::App& fbm_app) {
                {"command", "fbm theory"},
                {"dist", dist->spec()},
                {"method", method},
-               {"units", units_note}};
+               {"normalisation", units_note}};
       doc.update(fbm::to_json(c));
       fmt::print("{}\n", doc.dump(2));
     } else {
@@ -200,7 +200,7 @@ void run_simulate(const SimulateOptions& o) {
                  {"sharing", o.sharing},
                  {"control", control},
                  {"points", o.points}}},
-               {"units", units},
+               {"normalisation", units},
                {"curve_file", o.out.empty() ? json(nullptr) : json(o.out)}};
   summary.update(fbm::to_json(result.measured));
   // The N -> infinity ELS values, for comparison with the measured ones.

@@ -151,18 +151,15 @@ void print_outcome(const MonitorCommandOptions& options, const analysis::Monitor
                    const analysis::CurveColumns& columns, const std::string& source) {
   const auto s = monitor.summary();
   if (options.json) {
-    nlohmann::json j = {
-        {"tool", "rupture monitor"},
-        {"version", version_string},
-        {"inputs",
-         {{"file", options.file},
-          {"window", options.monitor.window},
-          {"drop", options.monitor.drop},
-          {"confirm", options.monitor.confirm},
-          {"alpha_range", {options.monitor.alpha_low, options.monitor.alpha_high}}}},
-        {"units",
-         {{"strain", columns.strain_unit}, {"force", columns.force_unit}, {"energy", columns.energy_unit}}}};
-    j.update(analysis::to_json(s));
+    nlohmann::json j = {{"tool", "rupture monitor"},
+                        {"version", version_string},
+                        {"inputs",
+                         {{"file", options.file},
+                          {"window", options.monitor.window},
+                          {"drop", options.monitor.drop},
+                          {"confirm", options.monitor.confirm},
+                          {"alpha_range", {options.monitor.alpha_low, options.monitor.alpha_high}}}}};
+    j.update(analysis::to_json(s, columns.strain_unit, columns.energy_unit));
     fmt::print("{}\n", j.dump(2));
     return;
   }

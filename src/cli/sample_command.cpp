@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "io/quantity.hpp"
 #include "rupture/version.hpp"
 #include "sample/formats.hpp"
 #include "sample/generator.hpp"
@@ -75,22 +76,21 @@ void run_generate(const GenerateOptions& options, const PackingParams& params) {
                      {"seed", options.seed},
                      {"out", options.out},
                      {"format", sample_format_name(format)},
-                     {"box", {params.size.x, params.size.y, params.size.z}},
-                     {"r_min", params.r_min},
-                     {"r_max", params.r_max},
-                     {"r_median", params.r_median},
+                     {"box", io::quantity({params.size.x, params.size.y, params.size.z}, "mm")},
+                     {"r_min", io::quantity(params.r_min, "mm")},
+                     {"r_max", io::quantity(params.r_max, "mm")},
+                     {"r_median", io::quantity(params.r_median, "mm")},
                      {"r_sigma", params.r_sigma},
                      {"bond_tolerance", params.bond_tolerance},
                      {"fill_rate", params.min_fill_rate},
-                     {"density", params.density},
-                     {"units", {{"box", "mm"}, {"radii", "mm"}, {"density", "g/mm^3"}}}};
+                     {"density", io::quantity(params.density, "g/mm^3")}};
     doc["sample"] = to_json(stats);
     doc["generation"] = {{"drawn_placed", report.drawn_placed},
                          {"gap_filled", report.gap_filled},
                          {"draws", report.draws},
                          {"positions_tried", report.positions_tried},
                          {"solid_fraction_after_drawn", report.solid_fraction_drawn},
-                         {"seconds", seconds}};
+                         {"wall_time", io::quantity(seconds, "s")}};
     fmt::print("{}\n", doc.dump(2));
   } else {
     print_stats(fmt::format("sample {} ({} format, seed {}, {:.2f} s)", options.out,

@@ -14,6 +14,7 @@
 #include "figures/snapshots.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/quantity.hpp"
 #include "rupture/version.hpp"
 
 namespace rupture::figures {
@@ -108,8 +109,8 @@ Figure fbm_figure(const io::CsvTable& table, const fs::path& input) {
 
 std::optional<double> json_value(const nlohmann::json& analysis, const char* key) {
   const auto it = analysis.find(key);
-  if (it == analysis.end() || it->is_null()) return std::nullopt;
-  return it->at("value").get<double>();
+  if (it == analysis.end()) return std::nullopt;
+  return io::quantity_value(*it);
 }
 
 // ℰ = dE_e/dx as the analysis computed it (analysis.json's "curves": filtered, differentiated, on its
@@ -118,11 +119,11 @@ std::optional<double> json_value(const nlohmann::json& analysis, const char* key
 std::optional<DataBlock> analysed_rate(const nlohmann::json& analysis, const std::string& strain_field,
                                        const std::string& source) {
   const auto curves = analysis.find("curves");
-  if (curves == analysis.end() || curves->at("energy_rate").empty()) return std::nullopt;
+  if (curves == analysis.end() || curves->at("energy_rate").at("value").empty()) return std::nullopt;
   const double x0 = curves->at("x0").at("value").get<double>(),
                step = curves->at("step").at("value").get<double>();
   std::vector<double> rate;
-  for (const auto& v : curves->at("energy_rate"))  // null: a value JSON cannot hold (NaN)
+  for (const auto& v : curves->at("energy_rate").at("value"))  // null: a value JSON cannot hold (NaN)
     rate.push_back(v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>());
   std::vector<double> grid(rate.size());
   for (std::size_t i = 0; i < grid.size(); ++i) grid[i] = x0 + static_cast<double>(i) * step;
@@ -146,12 +147,14 @@ void add_delay_panel(Figure& figure, const nlohmann::json& delta) {
   const bool sampled = delta.contains("sampling_distribution");
   const auto& posterior = sampled ? delta.at("sampling_distribution") : delta.at("posterior");
   const std::string what = sampled ? "sampling density (bootstrap)" : "posterior density";
-  const std::string unit = posterior.at("delta_unit").get<std::string>();
-  const std::string density_unit = posterior.at("density_unit").get<std::string>();
+  const auto& delta_values = posterior.at("delta");
+  const auto& density = posterior.at("density");
+  const std::string unit = delta_values.at("unit").get<std::string>();
+  const std::string density_unit = density.at("unit").get<std::string>();
   figure.blocks.push_back({what + " of the delay delta_x",
                            {fmt::format("delta_x[{}]", unit), fmt::format("density[{}]", density_unit)},
-                           {posterior.at("delta").get<std::vector<double>>(),
-                            posterior.at("density").get<std::vector<double>>()}});
+                           {delta_values.at("value").get<std::vector<double>>(),
+                            density.at("value").get<std::vector<double>>()}});
   Panel panel;
   panel.title = fmt::format("Delay between the ℰ and F maxima: δ_x = {:.3g} ± {:.2g} {}",
                             delta.at("mean").get<double>(), delta.at("sd").get<double>(), unit);
@@ -182,7 +185,7 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     read.push_back(analysis_file);
     try {
       analysis = nlohmann::json::parse(io::read_text_file(analysis_file));
-      const std::string strain_unit = analysis.at("units").at("strain").get<std::string>();
+      const std::string strain_unit = analysis.at("curves").at("x0").at("unit").get<std::string>();
       if (strain_unit != io::column_unit(curves.header[strain_column])) {
         throw InputError(analysis_file.string(),
                          fmt::format("strain unit '{}' differs from the curves' '{}'", strain_unit,
@@ -194,7 +197,12 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
       }
       analysed = analysed_rate(analysis, curves.header[strain_column], analysis_file.string());
     } catch (const nlohmann::json::exception& e) {
-      throw InputError(analysis_file.string(), fmt::format("not an analysis.json: {}", e.what()),
+      // An older build's file (bare arrays where quantities are now) lands here too.
+      const std::string written_by =
+          analysis.is_object() && analysis.contains("version") ? analysis["version"].dump() : "unknown";
+      throw InputError(analysis_file.string(),
+                       fmt::format("not an analysis.json of this format (written by {}; this is {}): {}",
+                                   written_by, version_string, e.what()),
                        "rerun `rupture analyze` to rewrite it");
     }
   }
@@ -299,8 +307,8 @@ std::vector<SnapshotFile> chosen_snapshots(const std::vector<SnapshotFile>& all,
   if (fs::exists(analysis_file)) {
     const auto analysis = nlohmann::json::parse(io::read_text_file(analysis_file), nullptr, false);
     for (const char* key : {"x_p", "x_c"}) {
-      if (analysis.is_object() && analysis.contains(key) && analysis[key].is_object())
-        strains.push_back(analysis[key].value("value", nan));
+      if (analysis.is_object() && analysis.contains(key))
+        strains.push_back(io::quantity_value(analysis[key]).value_or(nan));
     }
   }
   strains.erase(std::remove_if(strains.begin(), strains.end(), [](double v) { return !std::isfinite(v); }),

@@ -20,6 +20,7 @@
 #include "io/csv.hpp"
 #include "io/csv_stream.hpp"
 #include "io/file_lock.hpp"
+#include "io/quantity.hpp"
 #include "io/vtk.hpp"
 #include "loading/checkpoint.hpp"
 #include "loading/interrupt.hpp"
@@ -150,20 +151,28 @@ RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sampl
 }
 
 nlohmann::json to_json(const RunPlan& plan) {
-  return {{"dt_s", plan.dt},
+  return {{"dt", io::quantity(plan.dt, "s")},
           {"dt_auto", plan.dt_auto},
-          {"critical_dt_s", plan.critical_dt},
-          {"stiffest_spring_sum_N_per_mm", plan.stiffest_spring_sum},
-          {"stiffest_mass_g", units::mass_to_grams(plan.stiffest_mass)},
-          {"ramp_time_s", plan.ramp_time},
-          {"plate_separation_mm", plan.plate_separation},
-          {"wave_speed_mm_per_s", plan.wave_speed},
+          {"critical_dt", io::quantity(plan.critical_dt, "s")},
+          {"stiffest_spring_sum", io::quantity(plan.stiffest_spring_sum, "N/mm")},
+          {"stiffest_mass", io::quantity(units::mass_to_grams(plan.stiffest_mass), "g")},
+          {"ramp_time", io::quantity(plan.ramp_time, "s")},
+          {"plate_separation", io::quantity(plan.plate_separation, "mm")},
+          {"wave_speed", io::quantity(plan.wave_speed, "mm/s")},
           {"plate_to_wave_speed", plan.speed_ratio},
-          {"first_break_strain_estimate_percent", plan.first_break_strain},
+          {"first_break_strain_estimate", io::quantity(plan.first_break_strain, "%")},
           {"estimated_steps", plan.estimated_steps},
-          {"estimated_wall_s", plan.estimated_seconds},
-          {"memory_bytes", plan.memory_bytes},
+          {"estimated_wall_time", io::quantity(plan.estimated_seconds, "s")},
+          {"memory", io::quantity(double(plan.memory_bytes), "B")},
           {"warnings", plan.warnings}};
+}
+
+nlohmann::json to_json(const dem::StageTimes& times) {
+  return {{"neighbours", io::quantity(times.neighbours, "s")},
+          {"integrate", io::quantity(times.integrate, "s")},
+          {"forces", io::quantity(times.forces, "s")},
+          {"plates", io::quantity(times.plates, "s")},
+          {"breaks", io::quantity(times.breaks, "s")}};
 }
 
 namespace {
@@ -592,32 +601,28 @@ class TensionRun {
   }
 
   void add_results_to_record() {
-    const dem::StageTimes& t = system_.stage_times();
     record_["steps"] = summary_.steps;
-    record_["final_strain_percent"] = summary_.strain;
-    record_["separation_strain_percent"] =
-        loop_.separated ? nlohmann::json(loop_.separation_strain) : nlohmann::json(nullptr);
+    record_["final_strain"] = io::quantity(summary_.strain, "%");
+    record_["separation_strain"] =
+        loop_.separated ? io::quantity(loop_.separation_strain, "%") : nlohmann::json(nullptr);
     record_["separation_rule"] =
         loop_.separated ? nlohmann::json(loop_.separation_rule) : nlohmann::json(nullptr);
     record_["broken_bonds"] = summary_.broken_bonds;
-    record_["monitor"] = config_.monitor ? analysis::to_json(monitor_.summary()) : nlohmann::json(nullptr);
-    if (config_.monitor) record_["monitor"]["units"] = {{"strain", "%"}, {"force", "N"}, {"energy", "mJ"}};
-    record_["wall_s"] = summary_.wall_seconds;
-    record_["particle_steps_per_s"] =
-        double(summary_.steps) * double(sample_.size()) / std::max(summary_.wall_seconds, 1e-9);
-    record_["energy_balance"] = {{"max_abs_error_mJ", summary_.max_energy_error},
+    record_["monitor"] =
+        config_.monitor ? analysis::to_json(monitor_.summary(), "%", "mJ") : nlohmann::json(nullptr);
+    record_["wall_time"] = io::quantity(summary_.wall_seconds, "s");
+    record_["throughput"] =
+        io::quantity(double(summary_.steps) * double(sample_.size()) / std::max(summary_.wall_seconds, 1e-9),
+                     "particle-steps/s");
+    record_["energy_balance"] = {{"max_abs_error", io::quantity(summary_.max_energy_error, "mJ")},
                                  {"max_error_relative_to_work", summary_.max_relative_energy_error},
-                                 {"plate_work_mJ", system_.plate_work()},
-                                 {"initial_energy_mJ", initial_energy_}};
-    record_["stage_seconds"] = {{"neighbours", t.neighbours},
-                                {"integrate", t.integrate},
-                                {"forces", t.forces},
-                                {"plates", t.plates},
-                                {"breaks", t.breaks}};
+                                 {"plate_work", io::quantity(system_.plate_work(), "mJ")},
+                                 {"initial_energy", io::quantity(initial_energy_, "mJ")}};
+    record_["stage_times"] = to_json(system_.stage_times());
     record_["neighbour_rebuilds"] = system_.neighbour_rebuilds();
     record_["snapshots"] = loop_.snapshots.size();
-    record_["memory_bytes_per_particle"] =
-        double(system_.memory_bytes()) / double(std::max<std::size_t>(1, sample_.size()));
+    record_["memory_per_particle"] =
+        io::quantity(double(system_.memory_bytes()) / double(std::max<std::size_t>(1, sample_.size())), "B");
   }
 
   // What the run was given.

@@ -42,6 +42,8 @@ struct RunPlan {
 // Throws InputError when dt exceeds the stability limit and the config does not allow it.
 RunPlan plan_run(const RunConfig& config, const dem::System& system, const Sample& sample);
 nlohmann::json to_json(const RunPlan& plan);
+// Each stage's wall time as {"value", "unit": "s"}: run.json's and `rupture bench`'s stage_times.
+nlohmann::json to_json(const dem::StageTimes& times);
 
 struct RunSummary {
   std::string status;       // "finished", "failed" or "interrupted"

@@ -82,20 +82,41 @@ std::string table(const std::vector<std::string>& header, const std::vector<std:
   return html + "</tbody>\n</table></div>\n";
 }
 
-// A measured analysis quantity {"value", "error", "unit"} as (value, ± error, unit) cells.
-std::vector<std::string> measured_row(const std::string& name, const std::string& meaning, const json& m) {
-  if (!m.is_object()) return {io::escape_markup(name), io::escape_markup(meaning), "not found", "", ""};
-  const auto error = m.contains("error") && m["error"].is_number() ? m["error"].get<double>() : NAN;
-  return {io::escape_markup(name), io::escape_markup(meaning), number_text(m.at("value").get<double>()),
-          std::isfinite(error) ? "± " + number_text(error) : "", io::escape_markup(m.value("unit", ""))};
+// A quantity of rupture's JSON ({"value", "unit"}, io/quantity.hpp), or null.
+bool is_quantity(const json& q) { return q.is_object() && q.contains("value") && q.contains("unit"); }
+
+// A number as text, or "–" when it is missing (null, absent, not a number).
+std::string number_or_dash(const json& v) { return v.is_number() ? number_text(v.get<double>()) : "–"; }
+
+// The value of a quantity as text ("–" when null or missing).
+std::string value_text(const json& q) { return number_or_dash(is_quantity(q) ? q["value"] : json()); }
+
+std::string unit_text(const json& q) {
+  return is_quantity(q) && q["unit"].is_string() ? io::escape_markup(q["unit"].get<std::string>()) : "";
 }
 
-// Nested JSON flattened to "a.b.c" keys and their values as text, in key order; arrays of numbers as
-// one short list (4 digits), so a histogram fits the page.
+// A measured analysis quantity {"value", "error", "unit"} as (value, ± error, unit) cells.
+std::vector<std::string> measured_row(const std::string& name, const std::string& meaning, const json& m) {
+  if (!is_quantity(m)) return {io::escape_markup(name), io::escape_markup(meaning), "not found", "", ""};
+  const auto error = m.contains("error") && m["error"].is_number() ? m["error"].get<double>() : NAN;
+  return {io::escape_markup(name), io::escape_markup(meaning), value_text(m),
+          std::isfinite(error) ? "± " + number_text(error) : "", unit_text(m)};
+}
+
+// Nested JSON flattened to "a.b.c" keys and their values as text, in key order; a quantity is one
+// entry with its unit; arrays of numbers are one short list (4 digits), so a histogram fits the page.
 struct FlatEntry {
   std::string key, value;
+  std::string unit;  // a quantity's; 1 for a bare number; empty for text and flags
+  bool quantity = false;
 };
 void flatten(const json& value, const std::string& prefix, std::vector<FlatEntry>& entries) {
+  if (is_quantity(value)) {
+    std::vector<FlatEntry> inner;
+    flatten(value["value"], prefix, inner);
+    entries.push_back({prefix, inner.front().value, value["unit"].get<std::string>(), true});
+    return;
+  }
   if (value.is_object() && !value.empty()) {
     for (const auto& [key, child] : value.items())
       flatten(child, prefix.empty() ? key : prefix + "." + key, entries);
@@ -109,21 +130,23 @@ void flatten(const json& value, const std::string& prefix, std::vector<FlatEntry
     for (const auto& v : value) text += (text.empty() ? "" : ", ") + number_text(v.get<double>());
     text = "[" + text + "]";
   }
-  entries.push_back({prefix, text});
+  // A bare number is dimensionless (docs/formats.md); text and flags have no unit.
+  entries.push_back({prefix, text, value.is_number() ? "1" : "", false});
 }
 
-// A key/value table of nested JSON; with `unit_of` (flattened key -> unit) a third column, the unit.
+// A key/value/unit table of nested JSON. The unit is the quantity's; else `unit_of(flattened key)`
+// when given (a config's keys), else 1 for a bare number.
 std::string key_value_table(const json& value,
                             const std::function<std::string(const std::string&)>& unit_of = nullptr) {
   std::vector<FlatEntry> entries;
   flatten(value, "", entries);
   std::vector<std::vector<std::string>> rows;
   for (const auto& e : entries) {
-    rows.push_back({"<code>" + io::escape_markup(e.key) + "</code>", io::escape_markup(e.value)});
-    if (unit_of) rows.back().push_back(io::escape_markup(unit_of(e.key)));
+    const std::string unit = unit_of && !e.quantity ? unit_of(e.key) : e.unit;
+    rows.push_back({"<code>" + io::escape_markup(e.key) + "</code>", io::escape_markup(e.value),
+                    io::escape_markup(unit)});
   }
-  if (unit_of) return table({"key", "value", "unit"}, rows);
-  return table({"key", "value"}, rows);
+  return table({"key", "value", "unit"}, rows);
 }
 
 // The folder's own name, also when it is given as "." or "run/".
@@ -213,9 +236,9 @@ std::string run_summary(const json& analysis) {
     text = fmt::format(
         "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, the force at "
         "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}): {}.",
-        number_text(x_p["value"].get<double>()), number_text(x_c["value"].get<double>()),
-        number_text(delta["mean"].get<double>()), number_text(delta["sd"].get<double>()),
-        number_text(ci95.at(0).get<double>()), number_text(ci95.at(1).get<double>()),
+        value_text(x_p), value_text(x_c), number_text(delta["mean"].get<double>()),
+        number_text(delta["sd"].get<double>()), number_text(ci95.at(0).get<double>()),
+        number_text(ci95.at(1).get<double>()),
         io::escape_markup(analysis::precursor_order(ci95.at(0).get<double>(), ci95.at(1).get<double>())),
         fmt::arg("u", unit));
   } else {
@@ -275,9 +298,6 @@ std::string analysis_section(const json& analysis) {
     const auto flag = [](const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "–"; };
     html += "<p>Fiber-bundle comparison (power law p(x) = (1+α) x<sup>α</sup>):</p>\n";
     // analysis.json writes α as a plain number (null when δ_x/x_p implies none).
-    const auto number_or_dash = [](const json& v) {
-      return v.is_number() ? number_text(v.get<double>()) : "–";
-    };
     const auto& range = alpha["ci68"];
     const std::string interval =
         range.is_array() && range.size() == 2 && (range[0].is_number() || range[1].is_number())
@@ -309,40 +329,31 @@ std::string run_section(const json& run) {
       {"why it stopped",
        io::escape_markup(get("stop_reason").is_string() ? get("stop_reason").get<std::string>() : "–"), ""},
       {"steps", num(get("steps")), "1"},
-      {"final strain", num(get("final_strain_percent")), "%"},
+      {"final strain", value_text(get("final_strain")), unit_text(get("final_strain"))},
       {"bonds broken", num(get("broken_bonds")), "1"},
-      {"wall time", num(get("wall_s")), "s"},
-      {"throughput", num(get("particle_steps_per_s")), "particle-steps/s"},
+      {"wall time", value_text(get("wall_time")), unit_text(get("wall_time"))},
+      {"throughput", value_text(get("throughput")), unit_text(get("throughput"))},
       {"threads", num(get("threads")), "1"}};
+  const auto quantity_row = [&](const char* fact, const json& q) {
+    rows.push_back({fact, value_text(q), unit_text(q)});
+  };
   if (balance.is_object()) {
     rows.push_back(
         {"energy-balance drift, max |W − Σ E| / W",
          balance.contains("max_error_relative_to_work") ? num(balance["max_error_relative_to_work"]) : "–",
          "1"});
-    rows.push_back(
-        {"energy-balance drift, max |W − Σ E|", num(balance.value("max_abs_error_mJ", json())), "mJ"});
-    rows.push_back({"plate work W", num(balance.value("plate_work_mJ", json())), "mJ"});
+    quantity_row("energy-balance drift, max |W − Σ E|", balance.value("max_abs_error", json()));
+    quantity_row("plate work W", balance.value("plate_work", json()));
   }
   if (plan.is_object()) {
-    rows.push_back({"time step dt", num(plan.value("dt_s", json())), "s"});
-    rows.push_back({"stability limit of dt", num(plan.value("critical_dt_s", json())), "s"});
+    quantity_row("time step dt", plan.value("dt", json()));
+    quantity_row("stability limit of dt", plan.value("critical_dt", json()));
   }
   if (run.contains("error")) rows.push_back({"error", io::escape_markup(run["error"].dump()), ""});
   std::string html = "<h2>Run</h2>\n<p>From <code>run.json</code>: <code>" +
                      io::escape_markup(run.value("command", std::string("?"))) + "</code></p>\n";
   html += table({"fact", "value", "unit"}, rows, {false, true, false});
-  if (run["sample"].is_object()) {
-    json sample = run["sample"];
-    const json units = sample.value("units", json::object());
-    sample.erase("units");
-    // run.json names the unit of each measured quantity under sample.units; the rest are counts.
-    const auto unit_of = [&](const std::string& key) -> std::string {
-      const std::string top = key.substr(0, key.find('.'));
-      if (key == "radius_histogram.bin_edges") return units.value("radius", "");
-      return units.contains(top) && units[top].is_string() ? units[top].get<std::string>() : "1";
-    };
-    html += "<h3>Sample</h3>\n" + key_value_table(sample, unit_of);
-  }
+  if (run["sample"].is_object()) html += "<h3>Sample</h3>\n" + key_value_table(run["sample"]);
   if (run["config"].is_object()) {
     html +=
         "<h2>Configuration</h2>\n<p>Every key resolved, as the run used it (meanings: <code>rupture run "
@@ -359,41 +370,42 @@ std::string monitor_section(const json& run) {
   std::string html = "<h2>On-line monitor</h2>\n";
   const auto& monitor = run["monitor"];
   if (!monitor.is_object()) return html + "<p>Off in this run (<code>monitor.enabled = false</code>).</p>\n";
-  const auto units = monitor.value("units", json::object());
-  const std::string strain_unit = io::escape_markup(units.value("strain", ""));
-  const auto num = [](const json& v) { return v.is_number() ? number_text(v.get<double>()) : "–"; };
   const auto& warning = monitor["warning"];
   if (!warning.is_object()) {
     return html + fmt::format(
                       "<p class=\"summary\">The monitor never warned ({} rows seen): it did not confirm an "
                       "energy-rate maximum while the force still rose.</p>\n",
-                      num(monitor["samples"]));
+                      number_or_dash(monitor["samples"]));
   }
+  const std::string strain_unit = unit_text(warning["strain"]);
   const auto& lead = monitor["lead"];
   std::string outcome =
       "the force maximum was not seen afterwards, so whether the warning came in time is unknown";
-  if (lead.is_number()) {
-    outcome = lead.get<double>() > 0.0
-                  ? fmt::format("<strong>before</strong> the force maximum, by {} {}", num(lead), strain_unit)
-                  : fmt::format("<strong>after</strong> the force maximum, by {} {} (too late)",
-                                number_text(-lead.get<double>()), strain_unit);
+  if (is_quantity(lead) && lead["value"].is_number()) {
+    const double by = lead["value"].get<double>();
+    outcome = by > 0.0 ? fmt::format("<strong>before</strong> the force maximum, by {} {}", number_text(by),
+                                     strain_unit)
+                       : fmt::format("<strong>after</strong> the force maximum, by {} {} (too late)",
+                                     number_text(-by), strain_unit);
   }
   html += fmt::format("<p class=\"summary\">The monitor warned at strain {} {}, {}.</p>\n",
-                      num(warning["strain"]), strain_unit, outcome);
-  const auto interval = [&](const json& v) {
-    return v.is_array() && v.size() == 2 ? "[" + num(v[0]) + ", " + num(v[1]) + "]" : std::string("–");
+                      value_text(warning["strain"]), strain_unit, outcome);
+  const auto interval = [&](const json& q) {
+    const json& v = is_quantity(q) ? q["value"] : json();
+    return v.is_array() && v.size() == 2 ? "[" + number_or_dash(v[0]) + ", " + number_or_dash(v[1]) + "]"
+                                         : std::string("–");
   };
   const auto yes_no = [](const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "–"; };
   std::vector<std::vector<std::string>> rows{
-      {"warning strain", num(warning["strain"]), strain_unit},
-      {"x_p as the monitor saw it", num(warning["x_p"]["value"]), strain_unit},
+      {"warning strain", value_text(warning["strain"]), strain_unit},
+      {"x_p as the monitor saw it", value_text(warning["x_p"]), strain_unit},
       {"predicted x_c (interval)", interval(warning["x_c_predicted"]), strain_unit},
-      {"x_c observed afterwards", num(monitor["x_c_observed"]), strain_unit},
-      {"lead x_c − warning strain", num(lead), strain_unit},
+      {"x_c observed afterwards", value_text(monitor["x_c_observed"]), strain_unit},
+      {"lead x_c − warning strain", value_text(lead), strain_unit},
       {"x_c inside the predicted interval", yes_no(monitor["x_c_held"]), ""},
       {"rows close enough to warn before the earliest predicted x_c", yes_no(warning["in_time"]), ""},
       {"largest row spacing that would have warned in time",
-       num(warning["max_row_spacing_for_a_timely_warning"]), strain_unit}};
+       value_text(warning["max_row_spacing_for_a_timely_warning"]), strain_unit}};
   return html + table({"fact", "value", "unit"}, rows, {false, true, false});
 }
 

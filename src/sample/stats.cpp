@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/units.hpp"
+#include "io/quantity.hpp"
 #include "sample/cell_grid.hpp"
 
 namespace rupture {
@@ -70,23 +71,21 @@ nlohmann::json to_json(const SampleStats& s) {
   return {{"particles", s.particles},
           {"bonds", s.bonds},
           {"solid_fraction", s.solid_fraction},
-          {"mean_coordination", s.mean_coordination},
+          {"mean_coordination", s.mean_coordination},  // bonds per particle
           {"isolated_particles", s.isolated},
-          {"box_volume", s.box_volume},
-          {"radius", {{"min", s.r_min}, {"max", s.r_max}, {"mean", s.r_mean}}},
-          {"radius_histogram", {{"bin_edges", s.radius_bin_edges}, {"counts", s.radius_histogram}}},
+          {"box_volume", io::quantity(s.box_volume, "mm^3")},
+          {"radius",
+           {{"min", io::quantity(s.r_min, "mm")},
+            {"max", io::quantity(s.r_max, "mm")},
+            {"mean", io::quantity(s.r_mean, "mm")}}},
+          {"radius_histogram",
+           {{"bin_edges", io::quantity(s.radius_bin_edges, "mm")}, {"counts", s.radius_histogram}}},
           {"glued_layers", {{"bottom", s.bottom_layer}, {"top", s.top_layer}}},
-          {"glued_layer_heights", {{"bottom", s.bottom_layer_y}, {"top", s.top_layer_y}}},
-          {"max_overlap", s.max_overlap},
-          {"total_mass", s.total_mass},
-          {"units",
-           {{"radius", "mm"},
-            {"box_volume", "mm^3"},
-            {"max_overlap", "mm"},
-            {"glued_layer_heights", "mm, mean y of each glued layer (y is the pull axis)"},
-            {"total_mass", "g"},
-            {"solid_fraction", "1"},
-            {"mean_coordination", "bonds per particle"}}}};
+          // the mean y (the pull axis) of each glued layer
+          {"glued_layer_heights",
+           {{"bottom", io::quantity(s.bottom_layer_y, "mm")}, {"top", io::quantity(s.top_layer_y, "mm")}}},
+          {"max_overlap", io::quantity(s.max_overlap, "mm")},
+          {"total_mass", io::quantity(s.total_mass, "g")}};
 }
 
 }  // namespace rupture

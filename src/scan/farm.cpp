@@ -20,6 +20,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/quantity.hpp"
 #include "rupture/version.hpp"
 #include "scan/ledger.hpp"
 #include "scan/results.hpp"
@@ -63,10 +64,12 @@ void print_point(const Plan& plan, std::size_t index, std::size_t done) {
 }
 
 nlohmann::json farm_info(const FarmOptions& options, Parallelism p, int ranks, Clock::time_point start) {
-  return {
-      {"command", options.command}, {"jobs", p.jobs},
-      {"threads", p.threads},       {"mpi_ranks", ranks},
-      {"cores", available_cores()}, {"wall_s", std::chrono::duration<double>(Clock::now() - start).count()}};
+  return {{"command", options.command},
+          {"jobs", p.jobs},
+          {"threads", p.threads},
+          {"mpi_ranks", ranks},
+          {"cores", available_cores()},
+          {"wall_time", io::quantity(std::chrono::duration<double>(Clock::now() - start).count(), "s")}};
 }
 
 // Runs `pending` points on `jobs` threads of this process, each taking the next point when free.

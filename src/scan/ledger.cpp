@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/file_lock.hpp"
+#include "io/quantity.hpp"
 #include "loading/run.hpp"
 #include "rupture/version.hpp"
 #include "scan/results.hpp"
@@ -203,16 +204,18 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
     row["why"] = why;
   }
   row["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  nlohmann::json result = {
-      {"tool", "rupture scan"},
-      {"version", version_string},
-      {"point", {{"index", point.index}, {"k_n_N_per_mm", point.k_n}, {"b_d_mm", point.b_d}}},
-      {"attempt", attempt.filename().string()},
-      {"command", command},
-      {"config", loading::to_json(config)},
-      {"sample_fingerprint", fingerprint_text(plan.sample_fingerprint)},
-      {"status", status},
-      {"row", row}};
+  nlohmann::json result = {{"tool", "rupture scan"},
+                           {"version", version_string},
+                           {"point",
+                            {{"index", point.index},
+                             {"k_n", io::quantity(point.k_n, "N/mm")},
+                             {"b_d", io::quantity(point.b_d, config.break_rule == "relative" ? "1" : "mm")}}},
+                           {"attempt", attempt.filename().string()},
+                           {"command", command},
+                           {"config", loading::to_json(config)},
+                           {"sample_fingerprint", fingerprint_text(plan.sample_fingerprint)},
+                           {"status", status},
+                           {"row", row}};
   io::write_json_atomically(folder / "result.json", result);  // last: the point is now finished
   return result;
 }

@@ -10,6 +10,7 @@
 
 #include "analysis/analysis.hpp"
 #include "fbm/power_law.hpp"
+#include "support/json_convention.hpp"
 #include "support/tool.hpp"
 #include "synthetic_curves.hpp"
 
@@ -40,6 +41,8 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("accepted"), std::string::npos) << r.out;
   const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  EXPECT_TRUE(rupture::testing::json_convention_breaches(j).empty())
+      << nlohmann::json(rupture::testing::json_convention_breaches(j)).dump();
   EXPECT_TRUE(j["accepted"].get<bool>());
   EXPECT_EQ(j["x_c"]["unit"], "1");
   EXPECT_NEAR(j["x_c"]["value"].get<double>(), 0.5, 0.01);
@@ -54,8 +57,11 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   EXPECT_GE(j["delta_x"]["ci95"][1].get<double>(), j["delta_x"]["ci68"][1].get<double>());
   EXPECT_LT(j["delta_x"]["ci68"][0].get<double>(), j["delta_x"]["value"].get<double>());
   EXPECT_GT(j["delta_x"]["ci68"][1].get<double>(), j["delta_x"]["value"].get<double>());
-  EXPECT_EQ(j["delta_x"]["sampling_distribution"]["delta"].size(),
-            j["delta_x"]["sampling_distribution"]["density"].size());
+  const auto& sampled = j["delta_x"]["sampling_distribution"];
+  EXPECT_GT(sampled["delta"]["value"].size(), 10u);
+  EXPECT_EQ(sampled["delta"]["value"].size(), sampled["density"]["value"].size());
+  EXPECT_EQ(sampled["delta"]["unit"], "1");
+  EXPECT_EQ(sampled["density"]["unit"], "1");
   EXPECT_EQ(j["uncertainty"]["replicates"], 200);
   EXPECT_EQ(j["filter"]["kind"], "butterworth");
   EXPECT_TRUE(j.contains("version"));
@@ -153,9 +159,13 @@ TEST(MonitorCli, WarnsFromStdinBeforeCriticalStrain) {
   ASSERT_EQ(as_json.exit_code, 0) << as_json.err;
   EXPECT_NE(as_json.err.find("WARNING at strain"), std::string::npos) << as_json.err;
   const auto j = nlohmann::json::parse(as_json.out);
-  EXPECT_LT(j["warning"]["strain"].get<double>(), std::pow(0.25, 1.0 / 3.0));
+  EXPECT_TRUE(rupture::testing::json_convention_breaches(j).empty())
+      << nlohmann::json(rupture::testing::json_convention_breaches(j)).dump();
+  EXPECT_LT(j["warning"]["strain"]["value"].get<double>(), std::pow(0.25, 1.0 / 3.0));
+  EXPECT_EQ(j["warning"]["strain"]["unit"], "1");
+  EXPECT_EQ(j["warning"]["x_c_predicted"]["value"].size(), 2u);
   EXPECT_TRUE(j["x_c_held"].get<bool>());
-  EXPECT_GT(j["lead"].get<double>(), 0.0);
+  EXPECT_GT(j["lead"]["value"].get<double>(), 0.0);
 }
 
 TEST(MonitorCli, FollowsAGrowingFile) {
@@ -285,7 +295,8 @@ TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
     ASSERT_EQ(m.exit_code, 0) << m.err;
     const auto w = nlohmann::json::parse(m.out);
     ASSERT_FALSE(w["warning"].is_null()) << m.out;
-    EXPECT_LT(w["warning"]["strain"].get<double>(), w["x_c_observed"].get<double>()) << alpha;
+    EXPECT_LT(w["warning"]["strain"]["value"].get<double>(), w["x_c_observed"]["value"].get<double>())
+        << alpha;
   }
 }
 

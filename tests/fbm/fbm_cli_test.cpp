@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/csv.hpp"
+#include "support/json_convention.hpp"
 #include "support/tool.hpp"
 
 namespace rupture {
@@ -23,6 +24,7 @@ TEST(FbmCli, TheoryJsonHasEveryKeyAndNullWhereUndefined) {
   const auto r = run_rupture("fbm theory --dist uniform --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
+  EXPECT_THAT(testing::json_convention_breaches(j), ::testing::IsEmpty());
   for (const char* key :
        {"x_c", "F_c", "x_m", "E_max", "x_p", "Erate_max", "delta_x", "Gamma", "A_r", "E_d_at_x_c"})
     EXPECT_TRUE(j.contains(key)) << key;
@@ -109,6 +111,7 @@ TEST(FbmCli, SimulateWritesCurveBurstsAndSummary) {
   const auto bursts = io::read_csv(dir / "run_bursts.csv");
   EXPECT_EQ(bursts.column("size").front(), 1.0);
   const auto summary = nlohmann::json::parse(r.out);  // --json: the summary on stdout, nothing else
+  EXPECT_THAT(testing::json_convention_breaches(summary), ::testing::IsEmpty());
   EXPECT_EQ(summary["inputs"]["fibers"], 100000);
   EXPECT_EQ(summary["inputs"]["seed"], 5);
   EXPECT_TRUE(summary["x_m"].is_null());

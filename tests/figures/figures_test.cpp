@@ -171,7 +171,7 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   EXPECT_EQ(marker_strains(out / "loading.gp").size(), 4u);
   // The energy rate drawn is the one analysis.json carries (no second analysis), over its E_rate,max.
   const auto analysis = nlohmann::json::parse(slurp(run / "analysis.json"));
-  const auto& stored = analysis.at("curves").at("energy_rate");
+  const auto& stored = analysis.at("curves").at("energy_rate").at("value");
   const auto all = blocks(out / "loading.dat");
   ASSERT_GE(all.size(), 2u);
   ASSERT_EQ(all[1].rows.size(), stored.size());

@@ -164,8 +164,8 @@ void expect_same_outputs(const fs::path& resumed, const fs::path& reference) {
   const auto a = nlohmann::json::parse(slurp(resumed / "run.json"));
   const auto b = nlohmann::json::parse(slurp(reference / "run.json"));
   EXPECT_EQ(a["status"], "finished");
-  for (const char* key : {"stop_reason", "steps", "final_strain_percent", "separation_strain_percent",
-                          "broken_bonds", "monitor", "energy_balance", "command"})
+  for (const char* key : {"stop_reason", "steps", "final_strain", "separation_strain", "broken_bonds",
+                          "monitor", "energy_balance", "command"})
     EXPECT_EQ(a[key], b[key]) << key;
   EXPECT_FALSE(fs::exists(resumed / "checkpoints")) << "a finished run removes its checkpoints";
 }

@@ -12,6 +12,7 @@
 #include "io/csv.hpp"
 #include "sample/formats.hpp"
 #include "sample/lattice.hpp"
+#include "support/json_convention.hpp"
 #include "support/tool.hpp"
 
 namespace rupture {
@@ -101,6 +102,9 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
   EXPECT_EQ(report["stop_reason"], "separated");
   EXPECT_LT(report["energy_balance"]["max_error_relative_to_work"].get<double>(), 1e-2);
+  EXPECT_THAT(testing::json_convention_breaches(report), ::testing::IsEmpty());
+  EXPECT_EQ(report["plan"]["dt"]["unit"], "s");
+  EXPECT_EQ(report["sample"]["glued_layer_heights"]["top"]["unit"], "mm");
   const auto curves = io::read_csv(dir / "out" / "curves.csv");
   EXPECT_EQ(curves.header.size(), 15u);
   // Header first, no comment lines: what wrote the tables and what the strain means is in run.json.
@@ -127,9 +131,11 @@ TEST(RunCommand, StopAtSeparationFalsePullsOnToMaxStrain) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
   EXPECT_EQ(report["stop_reason"], "max_strain");
-  EXPECT_GE(report["final_strain_percent"].get<double>(), 3.0);
-  ASSERT_TRUE(report["separation_strain_percent"].is_number());
-  EXPECT_LT(report["separation_strain_percent"].get<double>(), 1.0);  // the block parts near 0.3 %
+  EXPECT_EQ(report["final_strain"]["unit"], "%");
+  EXPECT_GE(report["final_strain"]["value"].get<double>(), 3.0);
+  ASSERT_TRUE(report["separation_strain"]["value"].is_number());
+  EXPECT_EQ(report["separation_strain"]["unit"], "%");
+  EXPECT_LT(report["separation_strain"]["value"].get<double>(), 1.0);  // the block parts near 0.3 %
   EXPECT_EQ(report["config"]["stop"]["at_separation"], false);
 }
 
@@ -151,7 +157,8 @@ TEST(RunCommand, PreStressedSampleRunsWithItsInitialEnergyInTheBalance) {
   const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
   EXPECT_EQ(report["stop_reason"], "separated");
   const double expected = double(block.bonds.size()) * 0.5 * 1e3 * 5e-4 * 5e-4;  // N/mm * mm^2 = mJ
-  EXPECT_NEAR(report["energy_balance"]["initial_energy_mJ"].get<double>(), expected, 1e-9 * expected);
+  EXPECT_EQ(report["energy_balance"]["initial_energy"]["unit"], "mJ");
+  EXPECT_NEAR(report["energy_balance"]["initial_energy"]["value"].get<double>(), expected, 1e-9 * expected);
   // The release of the pre-stress shakes the block: the balance holds to a few percent of the energy
   // in play (0.5 % without the pre-stress).
   EXPECT_LT(report["energy_balance"]["max_error_relative_to_work"].get<double>(), 3e-2);

@@ -1,5 +1,6 @@
 // The reduced tissue preset end to end: bit-identical outputs for any thread count, a run to
 // separation with a force peak where the plan predicted the first break, and `rupture bench`.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "io/csv.hpp"
+#include "support/json_convention.hpp"
 #include "support/tool.hpp"
 
 namespace rupture {
@@ -82,7 +84,9 @@ TEST(RunCommand, ReducedTissueFailsWithAForcePeak) {
   EXPECT_GT(breaks.rows(), 100u);
   // The plan's first-break strain (the most stretched bond under an affine pull) is where bonds
   // start to break: measured 0.354 % against 0.363 % predicted (the nominal b_d / r0 is 0.60 %).
-  const double predicted = report["plan"]["first_break_strain_estimate_percent"].get<double>();
+  const auto& estimate = report["plan"]["first_break_strain_estimate"];
+  ASSERT_EQ(estimate["unit"], "%");
+  const double predicted = estimate["value"].get<double>();
   EXPECT_NEAR(breaks.column("strain").front(), predicted, 0.05 * predicted);
 }
 
@@ -91,12 +95,17 @@ TEST(BenchCommand, JsonReportsThroughputAndEqualHashesPerThreadCount) {
       "bench --sample tissue-small --steps 30 --threads 1 --threads 2 --broken 0 --broken 0.5 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(r.out);
+  EXPECT_THAT(testing::json_convention_breaches(report), ::testing::IsEmpty());
   const auto& results = report["results"];
   ASSERT_EQ(results.size(), 4u);
-  for (const auto& result : results)
-    for (const char* key :
-         {"particles", "bonds", "steps", "threads", "wall_s", "particle_steps_per_s", "state_hash"})
+  for (const auto& result : results) {
+    for (const char* key : {"particles", "bonds", "steps", "threads", "state_hash"})
       EXPECT_TRUE(result.contains(key)) << key;
+    EXPECT_EQ(result["wall_time"]["unit"], "s");
+    EXPECT_EQ(result["throughput"]["unit"], "particle-steps/s");
+    EXPECT_GT(result["throughput"]["value"].get<double>(), 0.0);
+    EXPECT_EQ(result["memory_per_particle"]["unit"], "B");
+  }
   EXPECT_EQ(results[0]["state_hash"], results[1]["state_hash"]) << "intact, 1 vs 2 threads";
   EXPECT_EQ(results[2]["state_hash"], results[3]["state_hash"]) << "half broken, 1 vs 2 threads";
   EXPECT_NEAR(results[2]["broken_bonds"].get<double>() / results[2]["bonds"].get<double>(), 0.5, 0.03);
@@ -109,11 +118,14 @@ TEST(BenchCommand, WholeRunGivesEqualOutputsPerThreadCount) {
                              "block.toml' --threads 1 --threads 2 --set stop.max_steps=2000 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto results = nlohmann::json::parse(r.out)["results"];
+  EXPECT_THAT(testing::json_convention_breaches(results), ::testing::IsEmpty());
   ASSERT_EQ(results.size(), 2u);
   for (const auto& result : results) {
-    for (const char* key : {"steps", "wall_s", "cpu_s", "particle_steps_per_s", "stage_seconds",
-                            "neighbour_rebuilds", "outputs_hash"})
+    for (const char* key : {"steps", "neighbour_rebuilds", "outputs_hash"})
       EXPECT_TRUE(result.contains(key)) << key;
+    for (const char* key : {"wall_time", "cpu_time"}) EXPECT_EQ(result[key]["unit"], "s") << key;
+    EXPECT_EQ(result["throughput"]["unit"], "particle-steps/s");
+    EXPECT_EQ(result["stage_times"]["forces"]["unit"], "s");
     EXPECT_GT(result["steps"].get<double>(), 0.0);
   }
   EXPECT_EQ(results[0]["outputs_hash"], results[1]["outputs_hash"]) << "1 vs 2 threads";

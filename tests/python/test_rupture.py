@@ -197,6 +197,7 @@ def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
         assert a.delta_x.value == pytest.approx(expected["delta_x"]["mean"], rel=1e-12)
         assert a.delta_x_ci95 == pytest.approx(tuple(expected["delta_x"]["ci95"]), rel=1e-12)
         assert a.accepted
+        assert a.units == {"strain": "%", "force": "N", "energy": "mJ"}
         delta, density = a.posterior
         assert delta.shape == density.shape and np.all(density >= 0)
     # Only the file carries the breaks, so only it classifies as the CLI does.

@@ -278,7 +278,7 @@ TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
   if (record["monitor"]["warning"].is_object()) {
     EXPECT_THAT(facts.body_text,
                 HasSubstr(fmt::format("The monitor warned at strain {:.4g} %",
-                                      record["monitor"]["warning"]["strain"].get<double>())));
+                                      record["monitor"]["warning"]["strain"]["value"].get<double>())));
   } else {
     EXPECT_THAT(facts.body_text, HasSubstr("The monitor never warned"));
   }

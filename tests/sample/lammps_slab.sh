@@ -38,5 +38,5 @@ run = json.load(open("run/run.json"))
 assert run["status"] == "finished" and run["stop_reason"] == "separated", (run["status"], run["stop_reason"])
 assert run["broken_bonds"] > 0
 assert run["energy_balance"]["max_error_relative_to_work"] < 1e-2, run["energy_balance"]
-print(f"LAMMPS's slab: separated at {run['separation_strain_percent']:.3g} %, {run['broken_bonds']} bonds broken")
+print(f"LAMMPS's slab: separated at {run['separation_strain']['value']:.3g} %, {run['broken_bonds']} bonds broken")
 PY

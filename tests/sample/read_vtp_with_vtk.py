@@ -65,7 +65,7 @@ def main():
     }
     if checks["radius array"]:
         low, high = data.GetPointData().GetArray("radius").GetRange()
-        checks["radii in [r_min, r_max]"] = abs(low - info["radius"]["min"]) < 1e-12 and abs(high - info["radius"]["max"]) < 1e-12
+        checks["radii in [r_min, r_max]"] = abs(low - info["radius"]["min"]["value"]) < 1e-12 and abs(high - info["radius"]["max"]["value"]) < 1e-12
     if len(sys.argv) > 3:
         checks.update(snapshot_checks(rupture, work, sys.argv[3], env, errors))
     checks["no reader errors"] = not errors

@@ -6,6 +6,7 @@
 
 #include "sample/formats.hpp"
 #include "sample/stats.hpp"
+#include "support/json_convention.hpp"
 #include "support/tool.hpp"
 
 namespace rupture {
@@ -23,6 +24,8 @@ TEST(SampleCli, GenerateThenInfoJsonReportsTheSampleStatistics) {
   const auto info = run_rupture("sample info --json '" + file + "'");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const auto doc = nlohmann::json::parse(info.out);
+  EXPECT_THAT(testing::json_convention_breaches(doc), ::testing::IsEmpty());
+  EXPECT_EQ(doc.at("radius").at("mean").at("unit"), "mm");
   const SampleStats stats = compute_stats(load_sample(file));
   EXPECT_EQ(doc.at("particles").get<std::size_t>(), stats.particles);
   EXPECT_EQ(doc.at("bonds").get<std::size_t>(), stats.bonds);

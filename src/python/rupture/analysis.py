@@ -34,7 +34,10 @@ class Analysis:
         self.mechanism = mechanism.get("class")
         alpha = document.get("alpha") or {}
         self.alpha = alpha.get("from_delta_over_x_p")
-        self.units = document.get("units", {})
+        curves = document.get("curves") or {}
+        self.units = {name: curves[key]["unit"] for name, key in
+                      (("strain", "x0"), ("force", "filtered_force"), ("energy", "filtered_elastic_energy"))
+                      if key in curves}
 
     @property
     def posterior(self):
@@ -42,7 +45,8 @@ class Analysis:
         dist = (self.document.get("delta_x") or {}).get("sampling_distribution")
         if dist is None:
             return None
-        return np.asarray(dist["delta"], dtype=float), np.asarray(dist["density"], dtype=float)
+        return (np.asarray(dist["delta"]["value"], dtype=float),
+                np.asarray(dist["density"]["value"], dtype=float))
 
     def __repr__(self):
         def show(m):
