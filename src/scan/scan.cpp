@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "dem/system.hpp"
 #include "io/atomic_file.hpp"
+#include "io/quantity.hpp"
 #include "loading/checkpoint.hpp"
 #include "loading/schema.hpp"
 
@@ -296,7 +297,7 @@ nlohmann::json to_json(const ScanConfig& c) {
   return {{"file", c.file.string()},
           {"scan", {{"base", c.base.string()}, {"output", c.output.string()}, {"set", c.set}}},
           {"sample", c.sample},
-          {"grid", {{"k_n_N_per_mm", range(c.grid_k_n)}, {"b_d_mm", range(c.grid_b_d)}}},
+          {"grid", {{"k_n", range(c.grid_k_n)}, {"b_d", range(c.grid_b_d)}}},
           {"points", listed},
           {"rules", loading::schema::to_json(rules_keys(), c)["rules"]}};
 }
@@ -488,13 +489,14 @@ std::string point_command(const Plan& plan, const Point& point, int threads) {
 
 nlohmann::json to_json(const Plan& plan) {
   nlohmann::json points = nlohmann::json::array();
+  const char* b_d_unit = plan.base_config.break_rule == "relative" ? "1" : "mm";
   for (const auto& p : plan.points)
     points.push_back({{"index", p.index},
-                      {"k_n_N_per_mm", p.k_n},
-                      {"b_d_mm", p.b_d},
+                      {"k_n", io::quantity(p.k_n, "N/mm")},
+                      {"b_d", io::quantity(p.b_d, b_d_unit)},
                       {"folder", "points/" + p.name},
                       {"ramp_steps", p.ramp_steps},
-                      {"max_strain_percent", p.max_strain},
+                      {"max_strain", io::quantity(p.max_strain, "%")},
                       {"output_interval", p.output_interval}});
   return {{"base", plan.base.string()},
           {"base_config", loading::to_json(plan.base_config)},
@@ -523,14 +525,19 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
   if (document.contains("sample_fingerprint"))
     plan.sample_fingerprint =
         std::strtoull(document.at("sample_fingerprint").get<std::string>().c_str(), nullptr, 16);
+  // Plans before the JSON convention wrote bare numbers under unit-suffixed keys.
+  const auto number = [](const nlohmann::json& point, const char* key, const char* earlier_key) {
+    const auto& q = point.contains(key) ? point.at(key) : point.at(earlier_key);
+    return (q.is_object() ? q.at("value") : q).get<double>();
+  };
   for (const auto& j : document.at("points")) {
     Point p;
     p.index = j.at("index").get<std::size_t>();
-    p.k_n = j.at("k_n_N_per_mm").get<double>();
-    p.b_d = j.at("b_d_mm").get<double>();
+    p.k_n = number(j, "k_n", "k_n_N_per_mm");
+    p.b_d = number(j, "b_d", "b_d_mm");
     p.name = point_name(p.k_n, p.b_d);
     p.ramp_steps = j.at("ramp_steps").get<std::int64_t>();
-    p.max_strain = j.at("max_strain_percent").get<double>();
+    p.max_strain = number(j, "max_strain", "max_strain_percent");
     p.output_interval = j.value("output_interval", std::int64_t{0});  // plans of 0.1 lack it
     plan.points.push_back(std::move(p));
   }

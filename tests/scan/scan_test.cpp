@@ -27,6 +27,7 @@
 #include "scan/farm.hpp"
 #include "scan/results.hpp"
 #include "scan_support.hpp"
+#include "support/json_convention.hpp"
 #include "support/tool.hpp"
 
 namespace rupture::scan {
@@ -404,6 +405,11 @@ TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThread
   EXPECT_GE(accepted, 1u);
   EXPECT_EQ(physics(dir / "one" / "results.csv"), physics(dir / "two" / "results.csv"));
   const auto scan = nlohmann::json::parse(slurp(dir / "two" / "scan.json"));
+  EXPECT_TRUE(rupture::testing::json_convention_breaches(scan).empty()) << scan.dump();
+  EXPECT_EQ(scan["wall_time"]["unit"], "s");
+  const auto plan = nlohmann::json::parse(slurp(dir / "two" / "plan.json"));
+  EXPECT_TRUE(rupture::testing::json_convention_breaches(plan).empty()) << plan.dump();
+  EXPECT_EQ(plan["points"][0]["max_strain"]["unit"], "%");
   EXPECT_EQ(scan["jobs"], 2);
   EXPECT_EQ(scan["threads"], 1);
   EXPECT_EQ(scan["counts"]["ok"], 6);
@@ -453,6 +459,8 @@ TEST(ScanCommand, ReanalyzeRewritesTheAnalysisAndKeepsTheRuns) {
   std::filesystem::copy_file(scan / "results.csv", dir / "before.csv");
   const auto point = scan / "points" / "kn_100_bd_0.002";
   const auto result_before = nlohmann::json::parse(slurp(point / "result.json"));
+  EXPECT_TRUE(rupture::testing::json_convention_breaches(result_before).empty()) << result_before.dump();
+  EXPECT_EQ(result_before.at("point").at("b_d").at("unit"), "mm");
   const auto attempt = point / result_before.at("attempt").get<std::string>();
   const std::string curves = slurp(attempt / "curves.csv");
   // A stale analysis (as an older version would have left it) is replaced by this version's.
