@@ -254,7 +254,7 @@ void add_bench_command(CLI::App& app, int&) {
               2));
     else
       fmt::print("bytes per particle (engine arrays, bonds included): {:.0f}\n",
-                 results.back()["bytes_per_particle"].get<double>());
+                 io::quantity_value(results.back()["memory_per_particle"]).value_or(NAN));
   });
 }
 

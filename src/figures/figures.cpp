@@ -199,7 +199,9 @@ Figure run_figure(const io::CsvTable& curves, const fs::path& input, const fs::p
     } catch (const nlohmann::json::exception& e) {
       // An older build's file (bare arrays where quantities are now) lands here too.
       const std::string written_by =
-          analysis.is_object() && analysis.contains("version") ? analysis["version"].dump() : "unknown";
+          analysis.is_object() && analysis.contains("version") && analysis["version"].is_string()
+              ? analysis["version"].get<std::string>()
+              : "an unknown version";
       throw InputError(analysis_file.string(),
                        fmt::format("not an analysis.json of this format (written by {}; this is {}): {}",
                                    written_by, version_string, e.what()),

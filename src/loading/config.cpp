@@ -359,6 +359,14 @@ std::string config_key_unit(const std::string& path) {
   return key ? key->unit : std::string();
 }
 
+std::string bond_stiffness_unit(const RunConfig& config) {
+  return config.scale_stiffness ? "N/mm^2" : "N/mm";
+}
+
+std::string break_distance_unit(const RunConfig& config) {
+  return config.break_rule == "relative" ? "1" : "mm";
+}
+
 std::optional<schema::Range> config_key_range(const std::string& path) {
   const Key* key = schema::find_key(run_keys(), path);
   return key ? key->range : std::nullopt;

@@ -106,6 +106,11 @@ std::string config_reference();
 // unknown key), as the schema states it: for tables that print a resolved config.
 std::string config_key_unit(const std::string& path);
 
+// The units of k_n and b_d as `config` uses them: N/mm, or ESyS's normalK in N/mm^2 with
+// bonds.scale_stiffness; mm, or 1 (a strain) with the relative break rule.
+std::string bond_stiffness_unit(const RunConfig& config);
+std::string break_distance_unit(const RunConfig& config);
+
 // The plausible range of a number key given as "section.name", as the schema states it: for other
 // configs that set the same quantity (a scan's k_n and b_d).
 std::optional<schema::Range> config_key_range(const std::string& path);

@@ -474,8 +474,13 @@ std::string scan_report(const fs::path& folder, const std::string& command, std:
   if (fs::exists(folder / "scan.json")) {
     json scan = read_json(folder / "scan.json");
     scan.erase("points");  // one entry per point: the results table below says it better
-    body += "<h2>Scan</h2>\n<p>From <code>scan.json</code> (units of the rules: docs/scan.md).</p>\n" +
-            key_value_table(scan);
+    // The scan config is echoed as its TOML reads (units: `rupture scan --help-config`); the rest of
+    // the bare numbers are counts.
+    const auto unit_of = [](const std::string& key) { return key.starts_with("scan_config.") ? "" : "1"; };
+    body +=
+        "<h2>Scan</h2>\n<p>From <code>scan.json</code> (units of the scan config: <code>rupture scan "
+        "--help-config</code>).</p>\n" +
+        key_value_table(scan, unit_of);
   }
   body +=
       "<h2>Results</h2>\n<p>Every point of <code>results.csv</code> (units in brackets; empty: not found or "

@@ -28,7 +28,8 @@ struct SampleStats {
 
 SampleStats compute_stats(const Sample& sample, std::size_t histogram_bins = 8);
 
-// JSON with the keys particles, bonds, solid_fraction, mean_coordination, ... and a "units" object.
+// JSON with the keys particles, bonds, solid_fraction, mean_coordination, ...; sizes and the mass
+// as quantities {"value", "unit"} (io/quantity.hpp).
 nlohmann::json to_json(const SampleStats& stats);
 
 }  // namespace rupture

@@ -84,6 +84,13 @@ void analyse_attempt(const std::filesystem::path& attempt, nlohmann::json& row, 
   }
 }
 
+// result.json's "point": the index and the point's k_n and b_d in the base config's units.
+nlohmann::json point_json(const Point& point, const loading::RunConfig& config) {
+  return {{"index", point.index},
+          {"k_n", io::quantity(point.k_n, loading::bond_stiffness_unit(config))},
+          {"b_d", io::quantity(point.b_d, loading::break_distance_unit(config))}};
+}
+
 nlohmann::json base_row(const Point& point) {
   return {{"point", point.index},
           {"k_n", point.k_n},
@@ -206,10 +213,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
   row["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json result = {{"tool", "rupture scan"},
                            {"version", version_string},
-                           {"point",
-                            {{"index", point.index},
-                             {"k_n", io::quantity(point.k_n, "N/mm")},
-                             {"b_d", io::quantity(point.b_d, config.break_rule == "relative" ? "1" : "mm")}}},
+                           {"point", point_json(point, config)},
                            {"attempt", attempt.filename().string()},
                            {"command", command},
                            {"config", loading::to_json(config)},
@@ -250,6 +254,7 @@ bool reanalyze_point(const Plan& plan, const Point& point) {
     row["why"] = why;
   }
   (*result)["status"] = status;
+  (*result)["point"] = point_json(point, plan.base_config);  // a file of an earlier build: this form
   (*result)["row"] = row;
   (*result)["analysis_version"] = version_string;
   io::write_json_atomically(folder / "result.json", *result);

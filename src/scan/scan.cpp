@@ -489,10 +489,11 @@ std::string point_command(const Plan& plan, const Point& point, int threads) {
 
 nlohmann::json to_json(const Plan& plan) {
   nlohmann::json points = nlohmann::json::array();
-  const char* b_d_unit = plan.base_config.break_rule == "relative" ? "1" : "mm";
+  const std::string k_n_unit = loading::bond_stiffness_unit(plan.base_config),
+                    b_d_unit = loading::break_distance_unit(plan.base_config);
   for (const auto& p : plan.points)
     points.push_back({{"index", p.index},
-                      {"k_n", io::quantity(p.k_n, "N/mm")},
+                      {"k_n", io::quantity(p.k_n, k_n_unit)},
                       {"b_d", io::quantity(p.b_d, b_d_unit)},
                       {"folder", "points/" + p.name},
                       {"ramp_steps", p.ramp_steps},
@@ -528,7 +529,7 @@ Plan plan_from_json(const nlohmann::json& document, const std::filesystem::path&
   // Plans before the JSON convention wrote bare numbers under unit-suffixed keys.
   const auto number = [](const nlohmann::json& point, const char* key, const char* earlier_key) {
     const auto& q = point.contains(key) ? point.at(key) : point.at(earlier_key);
-    return (q.is_object() ? q.at("value") : q).get<double>();
+    return (q.is_object() ? q.at("value") : q).get<double>();  // a json type_error when not a number
   };
   for (const auto& j : document.at("points")) {
     Point p;

@@ -48,6 +48,17 @@ TEST(Config, OverridesAcceptTomlValuesAndBareWords) {
   EXPECT_FALSE(automatic.dt.has_value());
 }
 
+// k_n is ESyS's normalK (N/mm^2) with scale_stiffness, b_d a strain under the relative rule.
+TEST(Config, BondUnitsFollowTheStiffnessScalingAndTheBreakRule) {
+  const RunConfig plain = parse_config("[sample]\nlattice = \"chain\"\n", "test.toml");
+  EXPECT_EQ(bond_stiffness_unit(plain), "N/mm");
+  EXPECT_EQ(break_distance_unit(plain), "mm");
+  const RunConfig esys = parse_config("[sample]\nlattice = \"chain\"\n", "test.toml",
+                                      {"bonds.scale_stiffness=true", "bonds.break_rule=relative"});
+  EXPECT_EQ(bond_stiffness_unit(esys), "N/mm^2");
+  EXPECT_EQ(break_distance_unit(esys), "1");
+}
+
 TEST(Config, ResolvedJsonHasEveryKey) {
   const auto json = to_json(parse_config("[sample]\npreset = \"tissue\"\n", "test.toml"));
   EXPECT_EQ(json["bonds"]["stiffness"], 1e3);

@@ -111,6 +111,18 @@ TEST(BenchCommand, JsonReportsThroughputAndEqualHashesPerThreadCount) {
   EXPECT_NEAR(results[2]["broken_bonds"].get<double>() / results[2]["bonds"].get<double>(), 0.5, 0.03);
 }
 
+// The table (no --json) ends with the engine's bytes per particle, read from the same record.
+TEST(BenchCommand, TableEndsWithTheBytesPerParticle) {
+  const auto r = run_rupture("bench --sample tissue-small --steps 10 --threads 1 --broken 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string label = "bytes per particle (engine arrays, bonds included): ";
+  const auto at = r.out.find(label);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double bytes = std::stod(r.out.substr(at + label.size()));
+  EXPECT_GT(bytes, 100.0);
+  EXPECT_LT(bytes, 2000.0);
+}
+
 // A whole run timed: the same outputs for one and two threads, the figures a reader needs, and
 // the temporary folder gone afterwards; --set without --run is refused.
 TEST(BenchCommand, WholeRunGivesEqualOutputsPerThreadCount) {

@@ -13,6 +13,11 @@ Measured = namedtuple("Measured", "value error unit")
 Measured.__doc__ = "A measured number with its one-sigma uncertainty (0 when not estimated) and unit."
 
 
+def _number(value):
+    """A JSON number, or NaN where the file has null (a value JSON cannot hold)."""
+    return float("nan") if value is None else value
+
+
 class Analysis:
     """One analysis. `document` is the whole analysis.json as a dict; the attributes below are read from
     it. Quantities the analysis did not find are None."""
@@ -20,12 +25,17 @@ class Analysis:
     _MEASURED = ("x_p", "x_c", "x_m", "F_c", "E_max", "Erate_max", "Gamma", "A_r", "delta_x_direct")
 
     def __init__(self, document):
+        curves = document.get("curves") or {}
+        if not isinstance(curves.get("filtered_force", {}), dict):
+            raise _rupture.InputError(f"analysis.json of an earlier build ({document.get('version', '?')}): its "
+                                      "numbers are not {value, unit} objects; rerun rupture analyze")
         self.document = document
         for key in self._MEASURED:
             m = document.get(key)
-            setattr(self, key, None if m is None else Measured(m["value"], m.get("error", 0.0), m.get("unit", "")))
+            setattr(self, key, None if m is None else
+                    Measured(_number(m["value"]), _number(m.get("error", 0.0)), m.get("unit", "")))
         delta = document.get("delta_x")
-        self.delta_x = None if delta is None else Measured(delta["mean"], delta["sd"], delta["unit"])
+        self.delta_x = None if delta is None else Measured(_number(delta["mean"]), _number(delta["sd"]), delta["unit"])
         self.delta_x_ci95 = None if delta is None else tuple(delta["ci95"])
         self.delta_x_ci68 = None if delta is None else tuple(delta["ci68"])
         self.accepted = bool(document.get("accepted"))
@@ -34,7 +44,6 @@ class Analysis:
         self.mechanism = mechanism.get("class")
         alpha = document.get("alpha") or {}
         self.alpha = alpha.get("from_delta_over_x_p")
-        curves = document.get("curves") or {}
         self.units = {name: curves[key]["unit"] for name, key in
                       (("strain", "x0"), ("force", "filtered_force"), ("energy", "filtered_elastic_energy"))
                       if key in curves}
