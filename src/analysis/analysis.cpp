@@ -475,21 +475,15 @@ std::optional<Grid> uniform_grid(const Curve& curve, const AnalysisOptions& opti
   return g;
 }
 
-// The smoothing cap under random-walk noise: the filter's period at most this share of the samples
-// from the curve's start to the filtered force's maximum. Chosen among 0.35, 0.5 and 0.7 on the
-// calibration's used sets (docs/analysis.md, "The smoothing cap and the interval scales learned
-// again"), by the rms error of δ_x.
-constexpr double longest_smoothing_share = 0.5;
-
 // On a bundle's increments the steps' noise can exceed all the slope's variation, so the
 // discrepancy rule accepts the floor of its search, a share of the whole record: a curve recorded
 // far past its peak is then averaged over most of the rise to it, which moves the maxima of broad
 // laws by up to 10 % of δ_x. The rise itself, measured with that first filter, caps the smoothing.
-void cap_smoothing_by_rise_to_peak(std::span<const double> force, FilterSettings& filter) {
+void cap_smoothing_by_rise_to_peak(std::span<const double> force, double share, FilterSettings& filter) {
   FilterSettings pilot = filter;
   const auto filtered = apply_filter(pilot, force);
   const auto top = static_cast<double>(std::max_element(filtered.begin(), filtered.end()) - filtered.begin());
-  if (top > 0.0) limit_smoothing(filter, longest_smoothing_share * top);
+  if (top > 0.0) limit_smoothing(filter, share * top);
 }
 
 // 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
@@ -498,7 +492,7 @@ void cap_smoothing_by_rise_to_peak(std::span<const double> force, FilterSettings
 // low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed; the rise to the force
 // peak then caps that choice. Under white noise the rule sees the curve's own shape and its choice
 // stands (a cap there only adds noise: docs/analysis.md).
-void choose_filter(const Grid& g, FilterSettings& filter, AnalysisResult& r) {
+void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share, AnalysisResult& r) {
   const std::size_t n = g.size();
   const bool automatic = chooses_own_strength(filter);
   const auto whole_curve_noise = estimate_noise(g.force(), g.energy(), 0, n - 1);
@@ -515,7 +509,7 @@ void choose_filter(const Grid& g, FilterSettings& filter, AnalysisResult& r) {
     }
     const std::span<const double> steps[] = {force_steps, energy_steps};
     choose_shared_filter(filter, steps);
-    if (automatic) cap_smoothing_by_rise_to_peak(g.force(), filter);
+    if (automatic && smoothing_share > 0.0) cap_smoothing_by_rise_to_peak(g.force(), smoothing_share, filter);
   } else {
     const std::span<const double> raw[] = {g.force(), g.energy()};
     choose_shared_filter(filter, raw);
@@ -733,7 +727,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
-  choose_filter(g, options.filter, r);  // 2
+  choose_filter(g, options.filter, options.random_walk_smoothing_share, r);  // 2
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
   const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, g.size()),
                           options.peak, options.acceptance.collapse_fraction};

@@ -86,6 +86,10 @@ struct AnalysisOptions {
   BootstrapOptions uncertainty;
   AcceptanceRules acceptance;
   MechanismRules mechanism;
+  // Under random-walk noise the automatic filter's period is at most this share of the samples from
+  // the curve's start to the filtered force's maximum; 0: no cap. 0.5 was chosen among 0.35, 0.5 and
+  // 0.7 by δ_x's rms error (bench/smoothing_share_sweep; docs/analysis.md, "The smoothing cap").
+  double random_walk_smoothing_share = 0.5;
   // δ_x's intervals scaled by their factors (delta_interval_scales, below); false keeps the
   // bootstrap's own, from which bench/interval_scales.py learns the factors.
   bool calibrated_intervals = true;
