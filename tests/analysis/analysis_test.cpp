@@ -105,6 +105,12 @@ TEST(AnalyzeCurve, RandomWalkSmoothingIsCappedByTheRiseToTheForcePeak) {
   const auto floor = analyze_curve(c, fixed);
   ASSERT_TRUE(floor.delay);
   EXPECT_LT(floor.delay->mean, 0.93 * truth.delta());
+  AnalysisOptions uncapped;  // share 0: the automatic choice without the cap is that floor
+  uncapped.random_walk_smoothing_share = 0.0;
+  const auto free_choice = analyze_curve(c, uncapped);
+  ASSERT_TRUE(free_choice.delay);
+  EXPECT_GT(2.0 / free_choice.filter.cutoff, 0.51 * samples_to_peak);
+  EXPECT_LT(free_choice.delay->mean, 0.93 * truth.delta());
 }
 
 // F peaks at 0.4, ℰ at 0.5: the force maximum comes first, so δ_x = −0.1 and the posterior must
