@@ -353,7 +353,9 @@ TEST(ScanClaims, CountAndSummariseTheAcceptedPointsOfAKnownTable) {
   const auto here = [&](std::size_t row) { return claims.rows[row].here; };
   EXPECT_EQ(here(0), "5 of 6 have δ_x > 0; 0 of 6 with the 95 % lower bound > 0");
   // log δ_x on log x_c over the five positive points: slope 0.927 (computed by hand).
-  EXPECT_EQ(here(1), "δ_x ∝ x_c^0.927 over x_c = 0.02–5 % (log–log fit, δ_x > 0)");
+  EXPECT_EQ(here(1),
+            "δ_x ∝ x_c^0.927 over x_c = 0.02–5 % (log–log fit, δ_x > 0); x_c^0.927 over the 5 whose 68 % "
+            "interval excludes 0");
   // δ_x/x_c sorted: -0.05, 0.18, 0.24, 0.25, 0.267, 0.3.
   EXPECT_EQ(here(2), "median 0.25 (10–90 %: 0.18–0.3; all -0.05–0.3)");
   EXPECT_EQ(here(3), "median –");  // the fixture has no α column values
@@ -368,6 +370,22 @@ TEST(ScanClaims, CountAndSummariseTheAcceptedPointsOfAKnownTable) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, scan::claims_markdown(claims, dir.path().string()));
   EXPECT_NE(r.out.find("| δ_x > 0 in every accepted run | 5 of 6 have δ_x > 0;"), std::string::npos);
+}
+
+// A positive δ_x whose 68 % interval reaches 0 counts in the plain fit, not in the resolved one:
+// without the point (x_c, δ_x) = (5, 0.9) the slope over the other four is 0.970 (computed by hand).
+TEST(ScanClaims, TheResolvedFitLeavesOutDelaysWhoseIntervalReachesZero) {
+  rupture::testing::TempDir dir;
+  rupture::testing::write_scan_fixture(dir.path());
+  auto table = scan::read_results(dir / "results.csv");
+  const std::size_t x_c = table.require("x_c"), lo68 = table.require("delta_x_lo68");
+  std::size_t changed = 0;
+  for (auto& row : table.rows)
+    if (row[x_c] == "5") row[lo68] = "-0.1", ++changed;
+  ASSERT_EQ(changed, 1u);
+  EXPECT_EQ(scan::check_claims(table).rows[1].here,
+            "δ_x ∝ x_c^0.927 over x_c = 0.02–5 % (log–log fit, δ_x > 0); x_c^0.970 over the 4 whose 68 % "
+            "interval excludes 0");
 }
 
 TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThreads) {
