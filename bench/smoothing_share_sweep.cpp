@@ -51,32 +51,28 @@ struct Tally {
   double rms() const { return estimated ? std::sqrt(squares / estimated) : NAN; }
 };
 
-}  // namespace
+const std::size_t fibers_choice[] = {10000, 100000, 1000000};
+const std::size_t rows_choice[] = {300, 1000, 5000};
 
-int main(int argc, char** argv) {
-  const int seeds = argc > 1 ? std::atoi(argv[1]) : 4;
-  std::vector<double> shares;
-  for (int i = 2; i < argc; ++i) shares.push_back(std::atof(argv[i]));
-  if (shares.empty()) shares = {0.0, 0.35, 0.5, 0.7};
-  if (seeds < 1) {
-    std::fprintf(stderr, "smoothing_share_sweep: seeds must be at least 1\n");
-    return 2;
-  }
-  const std::vector<Shape> swept = swept_shapes();
-  const std::size_t fibers_choice[] = {10000, 100000, 1000000};
-  const std::size_t rows_choice[] = {300, 1000, 5000};
-  struct Case {
-    std::size_t shape, fibers, rows;
-    std::uint64_t seed;
-  };
+struct Case {
+  std::size_t shape, fibers, rows;
+  std::uint64_t seed;
+};
+
+std::vector<Case> make_cases(std::size_t shapes, int seeds) {
   std::vector<Case> cases;
   for (const std::size_t fibers : fibers_choice)
-    for (std::size_t s = 0; s < swept.size(); ++s)
+    for (std::size_t s = 0; s < shapes; ++s)
       for (const std::size_t rows : rows_choice)
         for (int k = 0; k < seeds; ++k)
           cases.push_back({s, fibers, rows, static_cast<std::uint64_t>(7919 * cases.size() + 31)});
-  // outcomes[share][case]; each case's curve is drawn once. Cases run in parallel, each analysis on
-  // one thread (the bootstrap's replicates have their own generators: the numbers do not depend on it).
+  return cases;
+}
+
+// outcomes[share][case]; each case's curve is drawn once. Cases run in parallel, each analysis on one
+// thread (the bootstrap's replicates have their own generators: the numbers do not depend on it).
+std::vector<std::vector<Outcome>> analyse(const std::vector<Shape>& swept, const std::vector<Case>& cases,
+                                          const std::vector<double>& shares) {
   std::vector<std::vector<Outcome>> outcomes(shares.size(), std::vector<Outcome>(cases.size()));
 #pragma omp parallel for schedule(dynamic)
   for (std::size_t c = 0; c < cases.size(); ++c) {
@@ -90,30 +86,43 @@ int main(int argc, char** argv) {
       options.uncertainty.replicates = 100;
       options.random_walk_smoothing_share = shares[i];
       const auto r = analyze_curve(curve, options);
-      Outcome& o = outcomes[i][c];
       if (!r.delay) continue;
       const auto& d = *r.delay;
-      o.estimated = true;
-      o.accepted = r.accepted;
-      o.in68 = d.ci68_low <= truth_delta && truth_delta <= d.ci68_high;
-      o.in95 = d.ci95_low <= truth_delta && truth_delta <= d.ci95_high;
-      o.relative_error = (d.mean - truth_delta) / truth_delta;
+      outcomes[i][c] = {.estimated = true,
+                        .accepted = r.accepted,
+                        .in68 = d.ci68_low <= truth_delta && truth_delta <= d.ci68_high,
+                        .in95 = d.ci95_low <= truth_delta && truth_delta <= d.ci95_high,
+                        .relative_error = (d.mean - truth_delta) / truth_delta};
     }
   }
-  std::printf("%zu shapes x 3 row counts x %d seeds = %zu curves per fiber count\n\n", swept.size(), seeds,
-              swept.size() * 3 * static_cast<std::size_t>(seeds));
+  return outcomes;
+}
+
+// The tally of one share over the cases `keep` selects.
+template <class Keep>
+Tally tally(const std::vector<Case>& cases, const std::vector<Outcome>& outcomes, Keep keep) {
+  Tally t;
+  for (std::size_t c = 0; c < cases.size(); ++c)
+    if (keep(cases[c])) t.add(outcomes[c]);
+  return t;
+}
+
+void print_by_fibers(const std::vector<Case>& cases, const std::vector<double>& shares,
+                     const std::vector<std::vector<Outcome>>& outcomes) {
   std::printf(
       "| share | fibers | curves | with δ_x | accepted | δ_x mean error | δ_x rms error | 68 %% coverage "
       "(unscaled) | 95 %% coverage (unscaled) |\n|---|---|---|---|---|---|---|---|---|\n");
   for (std::size_t i = 0; i < shares.size(); ++i)
     for (const std::size_t fibers : fibers_choice) {
-      Tally t;
-      for (std::size_t c = 0; c < cases.size(); ++c)
-        if (cases[c].fibers == fibers) t.add(outcomes[i][c]);
+      const Tally t = tally(cases, outcomes[i], [&](const Case& c) { return c.fibers == fibers; });
       std::printf("| %g | %zu | %d | %d | %d | %+.1f %% | %.1f %% | %.0f %% | %.0f %% |\n", shares[i], fibers,
                   t.curves, t.estimated, t.accepted, 100 * t.mean(), 100 * t.rms(),
                   100.0 * t.in68 / t.estimated, 100.0 * t.in95 / t.estimated);
     }
+}
+
+void print_by_shape(const std::vector<Shape>& swept, const std::vector<Case>& cases,
+                    const std::vector<double>& shares, const std::vector<std::vector<Outcome>>& outcomes) {
   std::printf("\nδ_x mean / rms relative error per shape and fiber count\n\n| shape | fibers |");
   for (const double share : shares) std::printf(" share %g |", share);
   std::printf("\n|---|---|");
@@ -123,12 +132,39 @@ int main(int argc, char** argv) {
     for (const std::size_t fibers : fibers_choice) {
       std::printf("| %s | %zu |", swept[s].name.c_str(), fibers);
       for (std::size_t i = 0; i < shares.size(); ++i) {
-        Tally t;
-        for (std::size_t c = 0; c < cases.size(); ++c)
-          if (cases[c].shape == s && cases[c].fibers == fibers) t.add(outcomes[i][c]);
+        const Tally t =
+            tally(cases, outcomes[i], [&](const Case& c) { return c.shape == s && c.fibers == fibers; });
         std::printf(" %+.1f / %.1f %% |", 100 * t.mean(), 100 * t.rms());
       }
       std::printf("\n");
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int seeds = argc > 1 ? std::atoi(argv[1]) : 4;
+  std::vector<double> shares;
+  for (int i = 2; i < argc; ++i) {
+    char* end = nullptr;
+    shares.push_back(std::strtod(argv[i], &end));
+    if (end == argv[i] || *end != '\0' || shares.back() < 0.0 || shares.back() > 1.0) {
+      std::fprintf(stderr, "smoothing_share_sweep: share '%s' is not a number in [0, 1] (0: no cap)\n",
+                   argv[i]);
+      return 2;
+    }
+  }
+  if (shares.empty()) shares = {0.0, 0.35, 0.5, 0.7};
+  if (seeds < 1) {
+    std::fprintf(stderr, "smoothing_share_sweep: seeds must be a whole number of at least 1\n");
+    return 2;
+  }
+  const std::vector<Shape> swept = swept_shapes();
+  const std::vector<Case> cases = make_cases(swept.size(), seeds);
+  const auto outcomes = analyse(swept, cases, shares);
+  std::printf("%zu shapes x 3 row counts x %d seeds = %zu curves per fiber count\n\n", swept.size(), seeds,
+              swept.size() * 3 * static_cast<std::size_t>(seeds));
+  print_by_fibers(cases, shares, outcomes);
+  print_by_shape(swept, cases, shares, outcomes);
   return 0;
 }
