@@ -3,12 +3,12 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's mean
 // relative error and its rms error beside the paper's l1 shift inversion. Usage: analysis_calibration [curves
-// per group = 200] [tuning|held-out|held-out-2|held-out-3|held-out-4|held-out-5|held-out-6|all] [per-curve
-// CSV]. The per-curve file holds each curve's truth, estimates and intervals, from which
-// bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on a
-// held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run once
+// per group = 200] [tuning|held-out|held-out-2|...|held-out-7|all] [per-curve CSV] [all|white|bundle: the
+// noise groups, default all]. The per-curve file holds each curve's truth, estimates and intervals, from
+// which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
+// a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run once
 // for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6 checks the
-// shipped scales).
+// white-noise scales, held-out 7 the random-walk ones).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -47,6 +47,17 @@ int main(int argc, char** argv) {
   if (which == "held-out-4") chosen = fourth_held_out_shapes();
   if (which == "held-out-5") chosen = fifth_held_out_shapes();
   if (which == "held-out-6") chosen = sixth_held_out_shapes();
+  if (which == "held-out-7") chosen = seventh_held_out_shapes();
+  const std::string kinds = argc > 4 ? argv[4] : "all";
+  const bool known_set =
+      which == "tuning" || which == "held-out" || which == "all" ||
+      (which.rfind("held-out-", 0) == 0 && which.size() == 10 && which[9] >= '2' && which[9] <= '7');
+  if (!known_set || (kinds != "all" && kinds != "white" && kinds != "bundle")) {
+    std::fprintf(stderr,
+                 "analysis_calibration: unknown set '%s' or groups '%s'; see the usage at the top of %s\n",
+                 which.c_str(), kinds.c_str(), __FILE__);
+    return 2;
+  }
   std::ofstream per_curve;
   if (argc > 3) {
     per_curve.open(argv[3]);
@@ -66,6 +77,7 @@ int main(int argc, char** argv) {
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& g : groups) {
+    if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
     int accepted = 0, c68 = 0, c95 = 0, xc95 = 0, xp95 = 0, l1_count = 0;
     double rel = 0.0, sq = 0.0, sq_l1 = 0.0;
     for (int k = 0; k < per_group; ++k) {
