@@ -110,6 +110,36 @@ def table(title, rows, scales):
               f"{100 * covered['95'] / n:.1f} % | {100 * raw['68'] / n:.1f} % | {100 * raw['95'] / n:.1f} % |")
 
 
+def verdict(rows, scales):
+    """Each noise kind against the shipping rule (docs/analysis.md, "Calibration"): coverage within
+    63-73 % at 68 % and 93-97 % at 95 %, and no group more than 2 binomial sd below nominal."""
+    print("\n| noise | accepted | 68 % | 95 % | lowest group, 68 % / 95 % | verdict |")
+    print("|---|---|---|---|---|---|")
+    bounds = {"68": (63.0, 73.0), "95": (93.0, 97.0)}
+    for kind in sorted({r["noise"] for r in rows if r["accepted"] == "1"}):
+        accepted = [r for r in rows if r["noise"] == kind and r["accepted"] == "1"]
+        coverage = {lvl: 100 * sum(is_covered(r, lvl, scales[kind]) for r in accepted) / len(accepted)
+                    for lvl, _ in LEVELS}
+        failures = [f"{coverage[lvl]:.1f} % at {lvl} % is outside {low:g}-{high:g} %"
+                    for lvl, (low, high) in bounds.items() if not low <= coverage[lvl] <= high]
+        lowest = {}
+        for lvl, nominal in LEVELS:
+            for group in sorted({r["group"] for r in accepted}):
+                members = [r for r in accepted if r["group"] == group]
+                covered = sum(is_covered(r, lvl, scales[kind]) for r in members)
+                share = 100 * covered / len(members)
+                if lvl not in lowest or share < lowest[lvl][0]:
+                    lowest[lvl] = (share, group)
+                floor = nominal - 2 * math.sqrt(nominal * (1 - nominal) / len(members))
+                if covered < floor * len(members):
+                    failures.append(f"{group}: {covered} of {len(members)} at {lvl} %, "
+                                    f"{math.ceil(floor * len(members))} needed")
+        low68, low95 = lowest["68"], lowest["95"]
+        print(f"| {kind} | {len(accepted)} | {coverage['68']:.1f} % | {coverage['95']:.1f} % | "
+              f"{low68[0]:.1f} % ({low68[1]}) / {low95[0]:.1f} % ({low95[1]}) | "
+              f"{'passes' if not failures else 'fails: ' + '; '.join(failures)} |")
+
+
 def main(argv):
     if "--check" in argv:
         cut = argv.index("--check")
@@ -143,12 +173,18 @@ def main(argv):
         n = sum(r["noise"] == kind and r["accepted"] == "1" for r in learning)
         print(f"  {kind} noise ({n} accepted curves): scale 68 % = {by_level['68']:.4f}, "
               f"scale 95 % = {by_level['95']:.4f}")
+    for kind in given:
+        if kind not in {r["noise"] for r in read(learn + check)}:
+            sys.exit(f"interval_scales.py: --use '{kind}=...': no curve of that kind of noise; the `noise` "
+                     "column names them (white, random walk)")
     for kind, by_level in given.items():
         print(f"  scored with {kind} noise: scale 68 % = {by_level['68']:.4f}, scale 95 % = {by_level['95']:.4f}")
         scales[kind] = by_level
     table("Learning set", learning, scales)
     for path in check:
-        table(f"Check: {path}", read([path], skipped), scales)
+        checked = read([path], skipped)
+        table(f"Check: {path}", checked, scales)
+        verdict(checked, scales)
 
 
 if __name__ == "__main__":
