@@ -1,8 +1,8 @@
-# rupture 0.1.0 (ac4099f-dirty) plot tissue-absolute
-# read: tissue-absolute/results.csv
-# Draws mechanism_map.png and/or mechanism_map.svg from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
+# rupture 0.1.0 (bb2d40d-dirty) plot docs/study/tissue-absolute
+# read: docs/study/tissue-absolute/results.csv
+# Draws mechanism_map.png, mechanism_map.svg and/or mechanism_map.pdf from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
-formats = "png svg"
+formats = "png svg pdf"
 width = 1000
 height = 700
 font_spec = "Sans,14"
@@ -25,9 +25,15 @@ do for [format in formats] {
       set terminal png size width, height enhanced font font_spec
     }
     set output "mechanism_map.png"
-  } else {
+  }
+  if (format eq "svg") {
     set terminal svg size width, height enhanced font font_spec background rgb "white"
     set output "mechanism_map.svg"
+  }
+  if (format eq "pdf") {
+    # the page in points as the PNG is in pixels, so that the font keeps its size relative to it
+    set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
+    set output "mechanism_map.pdf"
   }
   set title "Breaking mechanisms over the scan (6 points)"
   set xlabel "bond stiffness k_n [N/mm]"
@@ -46,7 +52,6 @@ do for [format in formats] {
   unset arrow
   unset label
   plot "mechanism_map.dat" index 0 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#1f77b4" title "brittle", \
-    '' index 1 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile", \
-    '' index 2 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#555555" title "rejected: peaks not resolved"
+    '' index 1 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile"
   unset output
 }
