@@ -1,0 +1,74 @@
+"""bench/interval_scales.py: the conformal scales it learns, the shipping rule it applies to a
+check file, and the inputs it refuses (docs/analysis.md, "Calibration")."""
+import csv
+import importlib.util
+import pathlib
+import subprocess
+import sys
+
+SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "bench" / "interval_scales.py"
+COLUMNS = ["set", "group", "shape", "noise", "accepted", "delta_x_true", "delta_x", "ci68_low", "ci68_high",
+           "ci95_low", "ci95_high"]
+
+
+def load():
+    spec = importlib.util.spec_from_file_location("interval_scales", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def rows_with_scores(scores68, scores95, noise="random walk", group="bundle N=1e4"):
+    """Curves whose 68 % and 95 % intervals must be stretched by the given factors to reach the truth:
+    estimate 1, truth 1 + s68 (so the half-widths are 1 and s68 / s95)."""
+    rows = []
+    for s68, s95 in zip(scores68, scores95):
+        gap = s68
+        rows.append({"set": "t", "group": group, "shape": "weibull k=2", "noise": noise, "accepted": "1",
+                     "delta_x_true": str(1.0 + gap), "delta_x": "1.0", "ci68_low": "0.0", "ci68_high": "2.0",
+                     "ci95_low": str(1.0 - gap / s95), "ci95_high": str(1.0 + gap / s95)})
+    return rows
+
+
+def write(path, rows):
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        table = csv.DictWriter(f, fieldnames=COLUMNS)
+        table.writeheader()
+        table.writerows(rows)
+    return str(path)
+
+
+def run(*args):
+    return subprocess.run([sys.executable, str(SCRIPT), *args], capture_output=True, text=True, check=False)
+
+
+def test_the_learned_scale_is_the_split_conformal_quantile():
+    module = load()
+    scores = [0.01 * (i + 1) for i in range(100)]  # 0.01 .. 1.00
+    rows = rows_with_scores(scores, scores)
+    scales = module.learn_scales(rows)["random walk"]
+    # ceil((n + 1) L)-th smallest of n = 100: the 69th (0.69) at 68.27 %, the 96th (0.96) at 95 %.
+    assert abs(scales["68"] - 0.69) < 1e-12
+    assert abs(scales["95"] - 0.96) < 1e-12
+
+
+def test_the_rule_passes_nominal_coverage_and_names_what_fails(tmp_path, capsys):
+    module = load()
+    scores = [0.01 * (i + 1) for i in range(200)]  # needed stretch 0.01 .. 2.00, so scale 1 covers half
+    half = rows_with_scores(scores, scores)
+    module.verdict(half, {"random walk": {"68": 1.0, "95": 1.0}})
+    failed = capsys.readouterr().out
+    assert "fails" in failed and "50.0 % at 68 % is outside 63-73 %" in failed
+    assert "bundle N=1e4: 100 of 200 at 68 %, 124 needed" in failed
+
+    module.verdict(half, {"random walk": {"68": 1.365, "95": 1.905}})  # covers 136 and 190 of 200
+    passed = capsys.readouterr().out
+    assert "| random walk | 200 | 68.0 % | 95.0 % |" in passed and passed.rstrip().endswith("passes |")
+
+
+def test_a_factor_for_a_kind_of_noise_the_files_do_not_have_is_refused(tmp_path):
+    learn = write(tmp_path / "learn.csv", rows_with_scores([0.5] * 10, [0.5] * 10))
+    result = run(learn, "--use", "white noise=1,1")
+    assert result.returncode != 0
+    assert "--use 'white noise=...': no curve of that kind of noise" in result.stderr
+    assert run(learn, "--use", "random walk=1,1").returncode == 0
