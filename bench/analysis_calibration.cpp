@@ -21,38 +21,12 @@
 using namespace rupture::analysis;
 using namespace rupture::analysis::calibration;
 
-namespace {
-
-struct Group {
-  std::string name;
-  double level = 0.0;      // white noise, fraction of each peak
-  std::size_t fibers = 0;  // finite bundle
-};
-
-bool held_out(const Shape& s) {
-  return s.name.rfind("lognormal", 0) == 0 || s.name == "weibull mixture" || s.name == "powerlaw alpha=10";
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   const int per_group = argc > 1 ? std::atoi(argv[1]) : 200;
   const std::string which = argc > 2 ? argv[2] : "tuning";
-  std::vector<Shape> chosen;
-  for (auto& s : shapes()) {
-    if (which == "all" || (which == "held-out") == held_out(s)) chosen.push_back(s);
-  }
-  if (which == "held-out-2") chosen = second_held_out_shapes();
-  if (which == "held-out-3") chosen = third_held_out_shapes();
-  if (which == "held-out-4") chosen = fourth_held_out_shapes();
-  if (which == "held-out-5") chosen = fifth_held_out_shapes();
-  if (which == "held-out-6") chosen = sixth_held_out_shapes();
-  if (which == "held-out-7") chosen = seventh_held_out_shapes();
+  const std::vector<Shape> chosen = calibration_set(which);
   const std::string kinds = argc > 4 ? argv[4] : "all";
-  const bool known_set =
-      which == "tuning" || which == "held-out" || which == "all" ||
-      (which.rfind("held-out-", 0) == 0 && which.size() == 10 && which[9] >= '2' && which[9] <= '7');
-  if (!known_set || (kinds != "all" && kinds != "white" && kinds != "bundle")) {
+  if (chosen.empty() || (kinds != "all" && kinds != "white" && kinds != "bundle")) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s' or groups '%s'; see the usage at the top of %s\n",
                  which.c_str(), kinds.c_str(), __FILE__);
@@ -65,10 +39,6 @@ int main(int argc, char** argv) {
                  "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd\n";
     per_curve.precision(10);
   }
-  const std::vector<Group> groups = {{"white 0.2 %", 0.002, 0},   {"white 1 %", 0.01, 0},
-                                     {"white 3 %", 0.03, 0},      {"bundle N=1e4", 0, 10000},
-                                     {"bundle N=1e5", 0, 100000}, {"bundle N=1e6", 0, 1000000}};
-  const std::size_t rows_choice[] = {300, 1000, 5000};
   AnalysisOptions
       unscaled;  // the bootstrap's own intervals: interval_scales.py learns and checks the factors
   unscaled.calibrated_intervals = false;
@@ -76,16 +46,16 @@ int main(int argc, char** argv) {
       "| group | curves | accepted | δ_x 68 %% | δ_x 95 %% | x_c 95 %% | x_p 95 %% | δ_x mean rel. error | "
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const auto& g : groups) {
+  for (const auto& g : noise_groups()) {
     if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
     int accepted = 0, c68 = 0, c95 = 0, xc95 = 0, xp95 = 0, l1_count = 0;
     double rel = 0.0, sq = 0.0, sq_l1 = 0.0;
     for (int k = 0; k < per_group; ++k) {
-      const Shape& s = chosen[static_cast<std::size_t>(k) % chosen.size()];
-      const std::size_t rows = rows_choice[(static_cast<std::size_t>(k) / chosen.size()) % 3];
-      const auto seed = static_cast<std::uint64_t>(1000 * k + 17);
-      const Curve c = g.fibers > 0 ? finite_bundle_curve(s, rows, g.fibers, seed)
-                                   : white_noise_curve(s, rows, g.level, seed);
+      const auto curve_case = CalibrationCase::at(chosen, k);
+      const Shape& s = curve_case.shape;
+      const std::size_t rows = curve_case.rows;
+      const auto seed = curve_case.seed;
+      const Curve c = curve_case.draw(g);
       const Truth t = truth(s);
       const auto r = analyze_curve(c, unscaled);
       if (per_curve.is_open()) {

@@ -230,4 +230,55 @@ inline Curve finite_bundle_curve(const Shape& s, std::size_t rows, std::size_t f
   return bundle_curve(thresholds, rows, s.x_end, s.name + " bundle");
 }
 
+// The tuning set and the first held-out set split the nine shapes above.
+inline bool in_first_held_out(const Shape& s) {
+  return s.name.rfind("lognormal", 0) == 0 || s.name == "weibull mixture" || s.name == "powerlaw alpha=10";
+}
+
+// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-7,
+// all); empty for any other name.
+inline std::vector<Shape> calibration_set(const std::string& name) {
+  if (name == "held-out-2") return second_held_out_shapes();
+  if (name == "held-out-3") return third_held_out_shapes();
+  if (name == "held-out-4") return fourth_held_out_shapes();
+  if (name == "held-out-5") return fifth_held_out_shapes();
+  if (name == "held-out-6") return sixth_held_out_shapes();
+  if (name == "held-out-7") return seventh_held_out_shapes();
+  std::vector<Shape> chosen;
+  if (name != "tuning" && name != "held-out" && name != "all") return chosen;
+  for (auto& s : shapes())
+    if (name == "all" || (name == "held-out") == in_first_held_out(s)) chosen.push_back(s);
+  return chosen;
+}
+
+// The noise groups of the calibration table: independent white noise at a share of each peak, or a
+// finite bundle (random-walk noise).
+struct NoiseGroup {
+  std::string name;
+  double level = 0.0;      // white noise, fraction of each peak
+  std::size_t fibers = 0;  // finite bundle
+};
+inline std::vector<NoiseGroup> noise_groups() {
+  return {{"white 0.2 %", 0.002, 0},  {"white 1 %", 0.01, 0},      {"white 3 %", 0.03, 0},
+          {"bundle N=1e4", 0, 10000}, {"bundle N=1e5", 0, 100000}, {"bundle N=1e6", 0, 1000000}};
+}
+
+// Curve k of a group: the set's shapes in turn, then 300, 1000 and 5000 rows in turn, seed 1000 k + 17.
+struct CalibrationCase {
+  const Shape& shape;
+  std::size_t rows;
+  std::uint64_t seed;
+
+  static CalibrationCase at(const std::vector<Shape>& set, int k) {
+    const auto index = static_cast<std::size_t>(k);
+    constexpr std::size_t rows_choice[] = {300, 1000, 5000};
+    return {set[index % set.size()], rows_choice[(index / set.size()) % 3],
+            static_cast<std::uint64_t>(1000 * k + 17)};
+  }
+  Curve draw(const NoiseGroup& g) const {
+    return g.fibers > 0 ? finite_bundle_curve(shape, rows, g.fibers, seed)
+                        : white_noise_curve(shape, rows, g.level, seed);
+  }
+};
+
 }  // namespace rupture::analysis::calibration
