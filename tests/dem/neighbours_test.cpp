@@ -25,11 +25,9 @@ std::vector<std::uint32_t> slice(const NeighbourList& list, std::uint32_t a) {
   return {list.list.begin() + list.start[a], list.list.begin() + list.start[a] + list.count[a]};
 }
 
-TEST(NeighbourList, SlicesAreSortedAndHoldExactlyTheUnbondedPairsWithinTheCutoff) {
-  Block block;
-  NeighbourList list;
-  list.skin = 0.5;  // mm: reaches the face diagonals (1.414 mm apart, cutoff 1.5 mm), not the body ones
-  list.build(block.particles.hot, block.bonds, block.particles.max_radius, false);
+// Every slice sorted, holding exactly the unbonded pairs within the cutoff (against all pairs), with
+// room for the pairs its bonds may release; returns the number of candidates.
+std::size_t expect_exact_slices(const Block& block, const NeighbourList& list) {
   const auto& p = block.particles.hot;
   std::size_t pairs = 0;
   for (std::uint32_t a = 0; a < block.particles.size(); ++a) {
@@ -46,7 +44,34 @@ TEST(NeighbourList, SlicesAreSortedAndHoldExactlyTheUnbondedPairsWithinTheCutoff
     EXPECT_EQ(list.start[a + 1] - list.start[a], mine.size() + block.bonds.link_count[a])
         << "room for every pair its bonds may release";
   }
-  EXPECT_GT(pairs, 0u) << "the face diagonals are candidates";
+  return pairs;
+}
+
+TEST(NeighbourList, SlicesAreSortedAndHoldExactlyTheUnbondedPairsWithinTheCutoff) {
+  Block block;
+  NeighbourList list;
+  list.skin = 0.5;  // mm: reaches the face diagonals (1.414 mm apart, cutoff 1.5 mm), not the body ones
+  list.build(block.particles.hot, block.bonds, block.particles.max_radius, false);
+  EXPECT_GT(expect_exact_slices(block, list), 0u) << "the face diagonals are candidates";
+}
+
+// After failure fragments fly far apart: the grid must stay O(particles) (a dense grid over their box
+// was 10^9 cells, 4 GB cleared at every rebuild) and still find exactly the pairs within the cutoff,
+// also where far cells share a bucket.
+TEST(NeighbourList, FragmentsFlownFarApartKeepTheGridSmallAndTheSlicesExact) {
+  Block block;
+  auto& p = block.particles.hot;
+  const double far[][3] = {{1e5, 2e5, -3e5}, {-4e5, 1e5, 2e5}, {3e5, -2e5, 1e5}, {3e5 + 0.9, -2e5, 1e5}};
+  for (std::uint32_t a = 0; a < 4; ++a) {  // the last two close to each other: a pair far from the rest
+    p.x[a] = far[a][0];
+    p.y[a] = far[a][1];
+    p.z[a] = far[a][2];
+  }
+  NeighbourList list;
+  list.skin = 0.5;
+  list.build(p, block.bonds, block.particles.max_radius, false);
+  EXPECT_GT(expect_exact_slices(block, list), 0u);
+  EXPECT_LT(list.bytes(), std::size_t{64} << 10) << "bytes for 48 particles over a box of 10^6 mm";
 }
 
 TEST(NeighbourList, ReleasedPairsGoInSortedPlaceAtBothEnds) {
