@@ -1,8 +1,8 @@
-# rupture 0.1.0 (588cc07-dirty) plot small-relative
-# read: small-relative/results.csv
-# Draws delay_vs_critical.png and/or delay_vs_critical.svg from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
+# rupture 0.1.0 (9b147a5-dirty) plot docs/study/small-relative
+# read: docs/study/small-relative/results.csv
+# Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
-formats = "png svg"
+formats = "png svg pdf"
 width = 1000
 height = 700
 font_spec = "Sans,14"
@@ -25,15 +25,21 @@ do for [format in formats] {
       set terminal png size width, height enhanced font font_spec
     }
     set output "delay_vs_critical.png"
-  } else {
+  }
+  if (format eq "svg") {
     set terminal svg size width, height enhanced font font_spec background rgb "white"
     set output "delay_vs_critical.svg"
   }
-  set title "Delay of failure behind the precursor (28 analysed points; 1 with δ_x ≤ 0 cannot be shown on log axes)"
+  if (format eq "pdf") {
+    # the page in points as the PNG is in pixels, so that the font keeps its size relative to it
+    set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
+    set output "delay_vs_critical.pdf"
+  }
+  set title "Delay of failure behind the precursor (31 analysed points; 1 with δ_x ≤ 0 cannot be shown on log axes)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.02424877259944211:110.0756297806291]
-  set yrange [0.0008082924199814037:110.0756297806291]
+  set xrange [0.02425351317705445:50.4169667012346]
+  set yrange [0.0008084504392351483:50.4169667012346]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

@@ -1,8 +1,8 @@
-# rupture 0.1.0 (588cc07-dirty) plot small-relative
-# read: small-relative/results.csv
-# Draws mechanism_map.png and/or mechanism_map.svg from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
+# rupture 0.1.0 (9b147a5-dirty) plot docs/study/small-relative
+# read: docs/study/small-relative/results.csv
+# Draws mechanism_map.png, mechanism_map.svg and/or mechanism_map.pdf from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
-formats = "png svg"
+formats = "png svg pdf"
 width = 1000
 height = 700
 font_spec = "Sans,14"
@@ -25,9 +25,15 @@ do for [format in formats] {
       set terminal png size width, height enhanced font font_spec
     }
     set output "mechanism_map.png"
-  } else {
+  }
+  if (format eq "svg") {
     set terminal svg size width, height enhanced font font_spec background rgb "white"
     set output "mechanism_map.svg"
+  }
+  if (format eq "pdf") {
+    # the page in points as the PNG is in pixels, so that the font keeps its size relative to it
+    set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
+    set output "mechanism_map.pdf"
   }
   set title "Breaking mechanisms over the scan (49 points)"
   set xlabel "bond stiffness k_n [N/mm]"
