@@ -34,8 +34,9 @@ struct CellTable {
     hashed = cells > double(buckets);
     if (!hashed) buckets = std::size_t(dims[0] * dims[1] * dims[2]);
   }
+  // Clamped before the cast: a fragment may lie 1e20 cells out, past any integer.
   std::int64_t coord(double v, int d) const {
-    return std::min(dims[d] - 1, std::max<std::int64_t>(0, std::int64_t((v - lo[d]) / side)));
+    return std::int64_t(std::min(double(dims[d] - 1), std::max(0.0, std::floor((v - lo[d]) / side))));
   }
   // The bucket of cell (ix, iy, iz), or -1 for a cell outside the dense grid.
   std::int64_t bucket(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {

@@ -57,11 +57,11 @@ TEST(NeighbourList, SlicesAreSortedAndHoldExactlyTheUnbondedPairsWithinTheCutoff
 
 // After failure fragments fly far apart: the grid must stay O(particles) (a dense grid over their box
 // was 10^9 cells, 4 GB cleared at every rebuild) and still find exactly the pairs within the cutoff,
-// also where far cells share a bucket.
+// also where far cells share a bucket and where one lies further out than any integer cell index.
 TEST(NeighbourList, FragmentsFlownFarApartKeepTheGridSmallAndTheSlicesExact) {
   Block block;
   auto& p = block.particles.hot;
-  const double far[][3] = {{1e5, 2e5, -3e5}, {-4e5, 1e5, 2e5}, {3e5, -2e5, 1e5}, {3e5 + 0.9, -2e5, 1e5}};
+  const double far[][3] = {{1e5, 2e5, -3e20}, {-4e5, 1e5, 2e5}, {3e5, -2e5, 1e5}, {3e5 + 0.9, -2e5, 1e5}};
   for (std::uint32_t a = 0; a < 4; ++a) {  // the last two close to each other: a pair far from the rest
     p.x[a] = far[a][0];
     p.y[a] = far[a][1];
