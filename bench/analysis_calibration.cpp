@@ -3,7 +3,7 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's mean
 // relative error and its rms error beside the paper's l1 shift inversion. Usage: analysis_calibration [curves
-// per group = 200] [tuning|held-out|held-out-2|...|held-out-7|all] [per-curve CSV] [all|white|bundle: the
+// per group = 200] [tuning|held-out|held-out-2|...|held-out-8|all] [per-curve CSV] [all|white|bundle: the
 // noise groups, default all]. The per-curve file holds each curve's truth, estimates and intervals, from
 // which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
 // a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run once

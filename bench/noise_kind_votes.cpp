@@ -1,11 +1,11 @@
 // How the analysis's first step reads the noise of the calibration curves (docs/analysis.md,
-// "Calibration", held-out 7): the noise model's verdict "a random walk dominates" (2σ_r² > 6σ_w² for
-// F or E_e) from the whole curve, as the analysis decides it today, beside the same verdict from each
-// quarter of the curve (a sharp force peak or collapse sits in one quarter, where the single curvature
-// term of the whole-curve fit cannot absorb it). Prints one CSV row per curve: set, group, shape, rows,
-// whole (0/1), quarters (0-4 of them walk-dominated). The curves are those of
-// bench/analysis_calibration (same shapes, rows and seeds). Usage: noise_kind_votes [curves per group =
-// 36] [set ... as analysis_calibration names them; default tuning, held-out-5, held-out-6, held-out-7].
+// "Calibration", held-out 7 and 8): the noise model's verdict "a random walk dominates" (2σ_r² > 6σ_w²
+// for F or E_e) from the whole curve, as the analysis decided it up to held-out 7, beside the count of
+// the curve's quarters it holds in and the analysis's verdict now (a walk in at least 2 of the 4
+// quarters: bootstrap.hpp, reads_as_random_walk). Prints one CSV row per curve: set, group, shape,
+// rows, whole (0/1), quarters (0-4), analysis (0/1). The curves are those of bench/analysis_calibration
+// (same shapes, rows and seeds). Usage: noise_kind_votes [curves per group = 36] [set ... as
+// analysis_calibration names them; default tuning, held-out-5, held-out-6, held-out-7].
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -18,22 +18,11 @@
 using namespace rupture::analysis;
 using namespace rupture::analysis::calibration;
 
-namespace {
-
-bool walk_dominated(const NoiseModel& m) {
-  const auto dominated = [](const NoiseComponents& c) {
-    return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
-  };
-  return dominated(m.force) || dominated(m.energy);
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   const int per_group = argc > 1 ? std::atoi(argv[1]) : 36;
   std::vector<std::string> names(argv + std::min(argc, 2), argv + argc);
   if (names.empty()) names = {"tuning", "held-out-5", "held-out-6", "held-out-7"};
-  std::printf("set,group,shape,rows,whole,quarters\n");
+  std::printf("set,group,shape,rows,whole,quarters,analysis\n");
   for (const auto& name : names) {
     const std::vector<Shape> set = calibration_set(name);
     if (set.empty()) {
@@ -46,12 +35,11 @@ int main(int argc, char** argv) {
         const auto curve_case = CalibrationCase::at(set, k);
         const Curve c = curve_case.draw(g);
         const std::size_t n = c.force.size();
-        int quarters = 0;
-        for (std::size_t q = 0; q < 4; ++q)
-          quarters += walk_dominated(estimate_noise(c.force, c.energy, q * n / 4, (q + 1) * n / 4 - 1));
-        std::printf("%s,%s,\"%s\",%zu,%d,%d\n", name.c_str(), g.name.c_str(), curve_case.shape.name.c_str(),
-                    curve_case.rows, walk_dominated(estimate_noise(c.force, c.energy, 0, n - 1)) ? 1 : 0,
-                    quarters);
+        const int quarters = walk_dominated_quarters(c.force, c.energy, 0, n - 1);
+        const bool whole = random_walk_dominates(estimate_noise(c.force, c.energy, 0, n - 1));
+        std::printf("%s,%s,\"%s\",%zu,%d,%d,%d\n", name.c_str(), g.name.c_str(),
+                    curve_case.shape.name.c_str(), curve_case.rows, whole ? 1 : 0, quarters,
+                    reads_as_random_walk(c.force, c.energy, 0, n - 1) ? 1 : 0);
         std::fflush(stdout);
       }
     }

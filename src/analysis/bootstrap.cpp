@@ -107,6 +107,33 @@ NoiseModel estimate_noise(std::span<const double> force, std::span<const double>
   return model;
 }
 
+bool random_walk_dominates(const NoiseModel& model) {
+  const auto dominated = [](const NoiseComponents& c) {
+    return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
+  };
+  return dominated(model.force) || dominated(model.energy);
+}
+
+int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
+                            std::size_t high) {
+  high = std::min(high, force.size() - 1);
+  const std::size_t n = high + 1 - low;
+  int quarters = 0;
+  for (std::size_t q = 0; q < 4; ++q)
+    if (random_walk_dominates(estimate_noise(force, energy, low + q * n / 4, low + (q + 1) * n / 4 - 1)))
+      ++quarters;
+  return quarters;
+}
+
+bool reads_as_random_walk(std::span<const double> force, std::span<const double> energy, std::size_t low,
+                          std::size_t high) {
+  constexpr std::size_t shortest_quarter = 32;  // 17 second differences at the longest lag, 8
+  high = std::min(high, force.size() - 1);
+  if (high + 1 - low < 4 * shortest_quarter)
+    return random_walk_dominates(estimate_noise(force, energy, low, high));
+  return walk_dominated_quarters(force, energy, low, high) >= 2;
+}
+
 void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,
                      std::uint64_t seed, std::uint64_t replicate) {
   assert(force.size() == energy.size());

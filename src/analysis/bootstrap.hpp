@@ -40,6 +40,22 @@ struct NoiseModel {
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
                           std::size_t high);
 
+// Whether a random walk dominates the noise of F or of E_e: its share of the lag-1 structure
+// function, 2σ_r², exceeds white noise's, 6σ_w².
+bool random_walk_dominates(const NoiseModel& model);
+
+// How many of the four quarters of [low, high] a random walk dominates, each quarter's noise
+// fitted on its own. A sharp force peak or collapse sits in one quarter; over the whole curve the
+// fit's single curvature term cannot absorb it and it inflates the white term (docs/analysis.md,
+// held-out 7).
+int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
+                            std::size_t high);
+
+// The analysis's reading of the noise kind: a random walk where it dominates in at least 2 of the
+// 4 quarters; a span too short for quarters of 32 samples is read whole.
+bool reads_as_random_walk(std::span<const double> force, std::span<const double> energy, std::size_t low,
+                          std::size_t high);
+
 // Adds one draw of the model's noise to `force` and `energy` (same length), from a generator
 // seeded by (seed, replicate): the draw depends on nothing else. The random walk starts at 0 on the
 // first sample: only its increments inside the span move a maximum.
