@@ -26,15 +26,27 @@ int main(int argc, char** argv) {
   const std::string which = argc > 2 ? argv[2] : "tuning";
   const std::vector<Shape> chosen = calibration_set(which);
   const std::string kinds = argc > 4 ? argv[4] : "all";
-  if (chosen.empty() || (kinds != "all" && kinds != "white" && kinds != "bundle")) {
+  if (chosen.empty()) {
     std::fprintf(stderr,
-                 "analysis_calibration: unknown set '%s' or groups '%s'; see the usage at the top of %s\n",
-                 which.c_str(), kinds.c_str(), __FILE__);
+                 "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
+                 "held-out-8, all\n",
+                 which.c_str());
+    return 2;
+  }
+  if (kinds != "all" && kinds != "white" && kinds != "bundle") {
+    std::fprintf(stderr, "analysis_calibration: unknown noise groups '%s'; name all, white or bundle\n",
+                 kinds.c_str());
     return 2;
   }
   std::ofstream per_curve;
   if (argc > 3) {
     per_curve.open(argv[3]);
+    if (!per_curve) {
+      std::fprintf(stderr,
+                   "analysis_calibration: cannot write the per-curve file '%s'; name a writable path\n",
+                   argv[3]);
+      return 2;
+    }
     per_curve << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
                  "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd\n";
     per_curve.precision(10);
