@@ -27,7 +27,7 @@ interval = 200
 [run]
 threads = 2
 TOML
-printf '| sample seed | rows every (steps) | rows | x_p [%%] | x_c [%%] | δ_x [%%] | sd [%%] | 95 %% interval [%%] | accepted |\n|---|---|---|---|---|---|---|---|---|\n'
+printf '| sample seed | rows every (steps) | rows | noise | x_p [%%] | x_c [%%] | δ_x [%%] | sd [%%] | 95 %% interval [%%] | accepted |\n|---|---|---|---|---|---|---|---|---|---|\n'
 run_one() {
   local seed=$1 interval=$2 dir="$out/seed$1-every$2"
   if [ ! -f "$dir/curves.csv" ] || [ ! -f "$dir/run.json" ] || ! grep -q '"finished"' "$dir/run.json"; then
@@ -39,7 +39,8 @@ run_one() {
 import json, sys
 j = json.load(open(sys.argv[1])); d = j.get("delta_x") or {}
 f = lambda k: (j.get(k) or {}).get("value", float("nan"))
-print("| %s | %s | %d | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f] | %s |" % (sys.argv[2], sys.argv[3], j["resample"]["input_rows"],
+print("| %s | %s | %d | %s | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f] | %s |" % (sys.argv[2], sys.argv[3], j["resample"]["input_rows"],
+      (d.get("interval_scales") or {}).get("noise", "-"),
       f("x_p"), f("x_c"), d.get("value", float("nan")), d.get("sd", float("nan")),
       *(d.get("ci95") or [float("nan")] * 2), "yes" if j["accepted"] else "no: " + j["rejection"]))
 PY

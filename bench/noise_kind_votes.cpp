@@ -1,11 +1,11 @@
 // How the analysis's first step reads the noise of the calibration curves (docs/analysis.md,
 // "Calibration", held-out 7 and 8): the noise model's verdict "a random walk dominates" (2σ_r² > 6σ_w²
-// for F or E_e) from the whole curve, as the analysis decided it up to held-out 7, beside the count of
-// the curve's quarters it holds in and the analysis's verdict now (a walk in at least 2 of the 4
-// quarters: bootstrap.hpp, reads_as_random_walk). Prints one CSV row per curve: set, group, shape,
-// rows, whole (0/1), quarters (0-4), analysis (0/1). The curves are those of bench/analysis_calibration
-// (same shapes, rows and seeds). Usage: noise_kind_votes [curves per group = 36] [set ... as
-// analysis_calibration names them; default tuning, held-out-5, held-out-6, held-out-7].
+// for F or E_e: random_walk_dominates) from the whole curve, as the analysis decides it, beside the
+// number of the curve's quarters where it holds (walk_dominated_quarters; a walk in at least 2 of the
+// 4 finds the bundles the whole curve misses). Prints one CSV row per curve: set, group, shape, rows,
+// whole (0/1), quarters (0-4). The curves are those of bench/analysis_calibration (same shapes, rows
+// and seeds). Usage: noise_kind_votes [curves per group = 36] [set ... as analysis_calibration names
+// them; default tuning, held-out-5, held-out-6, held-out-7].
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   const int per_group = argc > 1 ? std::atoi(argv[1]) : 36;
   std::vector<std::string> names(argv + std::min(argc, 2), argv + argc);
   if (names.empty()) names = {"tuning", "held-out-5", "held-out-6", "held-out-7"};
-  std::printf("set,group,shape,rows,whole,quarters,analysis\n");
+  std::printf("set,group,shape,rows,whole,quarters\n");
   for (const auto& name : names) {
     const std::vector<Shape> set = calibration_set(name);
     if (set.empty()) {
@@ -37,9 +37,8 @@ int main(int argc, char** argv) {
         const std::size_t n = c.force.size();
         const int quarters = walk_dominated_quarters(c.force, c.energy, 0, n - 1);
         const bool whole = random_walk_dominates(estimate_noise(c.force, c.energy, 0, n - 1));
-        std::printf("%s,%s,\"%s\",%zu,%d,%d,%d\n", name.c_str(), g.name.c_str(),
-                    curve_case.shape.name.c_str(), curve_case.rows, whole ? 1 : 0, quarters,
-                    reads_as_random_walk(c.force, c.energy, 0, n - 1) ? 1 : 0);
+        std::printf("%s,%s,\"%s\",%zu,%d,%d\n", name.c_str(), g.name.c_str(), curve_case.shape.name.c_str(),
+                    curve_case.rows, whole ? 1 : 0, quarters);
         std::fflush(stdout);
       }
     }

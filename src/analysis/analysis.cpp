@@ -487,15 +487,15 @@ void cap_smoothing_by_rise_to_peak(std::span<const double> force, double share, 
 }
 
 // 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
-// the noise (finite bundles: every break is a step; read quarter by quarter), the discrepancy principle runs
-// on the increments, which are then the white part: on the curves themselves it would take the walk's low
-// frequencies for signal and leave ℰ, the walk's derivative, unsmoothed; the rise to the force peak then caps
-// that choice. Under white noise the rule sees the curve's own shape and its choice stands (a cap there only
-// adds noise: docs/analysis.md).
+// the noise (finite bundles: every break is a step), the discrepancy principle runs on the
+// increments, which are then the white part: on the curves themselves it would take the walk's
+// low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed; the rise to the force
+// peak then caps that choice. Under white noise the rule sees the curve's own shape and its choice
+// stands (a cap there only adds noise: docs/analysis.md).
 void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share, AnalysisResult& r) {
   const std::size_t n = g.size();
   const bool automatic = chooses_own_strength(filter);
-  r.filter_on_increments = reads_as_random_walk(g.force(), g.energy(), 0, n - 1);
+  r.filter_on_increments = random_walk_dominates(estimate_noise(g.force(), g.energy(), 0, n - 1));
   if (r.filter_on_increments) {
     std::vector<double> force_steps(n - 1), energy_steps(n - 1);
     for (std::size_t i = 0; i + 1 < n; ++i) {

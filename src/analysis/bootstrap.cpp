@@ -125,15 +125,6 @@ int walk_dominated_quarters(std::span<const double> force, std::span<const doubl
   return quarters;
 }
 
-bool reads_as_random_walk(std::span<const double> force, std::span<const double> energy, std::size_t low,
-                          std::size_t high) {
-  constexpr std::size_t shortest_quarter = 32;  // 17 second differences at the longest lag, 8
-  high = std::min(high, force.size() - 1);
-  if (high + 1 - low < 4 * shortest_quarter)
-    return random_walk_dominates(estimate_noise(force, energy, low, high));
-  return walk_dominated_quarters(force, energy, low, high) >= 2;
-}
-
 void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,
                      std::uint64_t seed, std::uint64_t replicate) {
   assert(force.size() == energy.size());

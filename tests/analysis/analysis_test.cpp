@@ -313,10 +313,11 @@ TEST(NoiseModel, SeparatesWhiteNoiseFromARandomWalk) {
 }
 
 // A bundle with a sharp force peak (α = 4, 300 rows; held-out 7's curve 1 at 10^5 fibers): over the
-// whole curve the collapse inflates the white term and the model reads white noise, which gave such
-// bundles white-noise filters and intervals covering 39 % at 68 %. Read quarter by quarter, the walk
-// dominates where the peak is not, and the analysis filters on the increments.
-TEST(NoiseModel, ABundleWithASharpPeakReadsAsARandomWalkQuarterByQuarter) {
+// whole curve the collapse inflates the white term and the model reads white noise (the known limit
+// "a finite bundle read as white noise"), while in most of its quarters the walk dominates. Under
+// white noise, even at 0.2 % where the peak is sharpest against the noise, no quarter reads as a
+// walk. The quarter count is what bench/noise_kind_votes measures (docs/analysis.md, held-out 8).
+TEST(NoiseModel, QuartersOfASharplyPeakedBundleReadAsARandomWalk) {
   using namespace calibration;
   const auto set = seventh_held_out_shapes();
   const auto bundle = CalibrationCase::at(set, 1);
@@ -325,13 +326,9 @@ TEST(NoiseModel, ABundleWithASharpPeakReadsAsARandomWalkQuarterByQuarter) {
   const std::size_t last = c.force.size() - 1;
   EXPECT_FALSE(random_walk_dominates(estimate_noise(c.force, c.energy, 0, last)));
   EXPECT_GE(walk_dominated_quarters(c.force, c.energy, 0, last), 2);
-  EXPECT_TRUE(reads_as_random_walk(c.force, c.energy, 0, last));
-  EXPECT_TRUE(analyze_curve(c, {}).filter_on_increments);
-  // The same shape under white noise, even at 0.2 % where the peak is sharpest against the noise,
-  // stays white in every quarter vote.
   for (double level : {0.002, 0.03}) {
     const Curve w = bundle.draw({"white", level, 0});
-    EXPECT_FALSE(reads_as_random_walk(w.force, w.energy, 0, w.force.size() - 1)) << level;
+    EXPECT_EQ(walk_dominated_quarters(w.force, w.energy, 0, w.force.size() - 1), 0) << level;
   }
 }
 
