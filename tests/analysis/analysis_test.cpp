@@ -332,6 +332,25 @@ TEST(NoiseModel, QuartersOfASharplyPeakedBundleReadAsARandomWalk) {
   }
 }
 
+// The DEM-like calibration group: the bundle's own curves, with white noise of the stated share of
+// F_c on F alone; the noise model sees it as white on F while E_e keeps the bundle's walk.
+TEST(NoiseModel, MixedNoiseGroupAddsWhiteNoiseToTheForceAlone) {
+  using namespace calibration;
+  const auto set = shapes();
+  const auto curve_case = CalibrationCase::at(set, 1000);
+  const NoiseGroup mixed = mixed_noise_groups()[1];
+  const Curve bundle = curve_case.draw({"bundle", 0, mixed.fibers});
+  const Curve c = curve_case.draw(mixed);
+  ASSERT_EQ(c.force.size(), bundle.force.size());
+  EXPECT_EQ(c.energy, bundle.energy);
+  double sum2 = 0.0;
+  for (std::size_t i = 0; i < c.force.size(); ++i) sum2 += std::pow(c.force[i] - bundle.force[i], 2);
+  const double sd = std::sqrt(sum2 / static_cast<double>(c.force.size()));
+  EXPECT_NEAR(sd / truth(curve_case.shape).F_c, mixed.force_white, 0.1 * mixed.force_white);
+  const auto model = estimate_noise(c.force, c.energy, 0, c.force.size() - 1);
+  EXPECT_NEAR(model.force.white / truth(curve_case.shape).F_c, mixed.force_white, 0.2 * mixed.force_white);
+}
+
 TEST(PrecursorOrder, SaysWhatTheIntervalResolves) {
   EXPECT_EQ(precursor_order(0.01, 0.03), "x_p comes before x_c (delta_x > 0 at 95 %)");
   EXPECT_EQ(precursor_order(-0.03, -0.01), "x_p comes after x_c (delta_x < 0 at 95 %)");
