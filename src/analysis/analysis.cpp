@@ -235,8 +235,10 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   const std::size_t energy_end = std::min(last, m.phase_end + search.peak.min_side);
   m.energy = fit_peak(inner(xs, energy_end), inner(m.filtered_energy, energy_end), 0.0, 1.0, search.peak);
   // The derivative's first and last half-windows are one-sided polynomial extrapolations, whose
-  // noise is several times the interior's: on a noisy curve they would win the maximum.
-  const auto half = static_cast<std::size_t>(search.derivative_window / 2);
+  // noise is several times the interior's, and inside the filter's edge the filtered E_e still
+  // follows the padding pinned to the first (last) noisy sample: its slope there is that sample's
+  // noise over a few filter lengths. On a noisy curve either would win the maximum.
+  const auto half = static_cast<std::size_t>(search.derivative_window / 2) + edge_samples(filter);
   const std::size_t rate_first = std::max(first, std::min(half, m.phase_end));
   const std::size_t rate_end =
       std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
