@@ -3,7 +3,7 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-9|all]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-10|all]
 // [per-curve CSV] [all|white|bundle|mixed: the noise groups, default all; mixed: bundles whose F also
 // carries white noise, as DEM curves do].
 // The per-curve file holds each curve's truth, estimates and intervals, from which
@@ -11,7 +11,7 @@
 // a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run
 // once for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6
 // checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind reading,
-// held-out 9 the energy-rate search's edge).
+// held-out 9 and 10 the energy-rate search's edge).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-9, all\n",
+                 "held-out-10, all\n",
                  which.c_str());
     return 2;
   }

@@ -269,7 +269,7 @@ TEST(AnalyzeCurve, ShiftL1WithANonPositiveScaleIsRejected) {
 // α = 7 under 1 % white noise, 5000 rows (held-out 8's curve 31): the Butterworth filter (cutoff
 // 0.017) pins the filtered E_e to its noisy first sample, and over the next ~1/cutoff samples its
 // slope reached 1.1, twice ℰ's true maximum (0.55 at x = 0.62): the curve was rejected with "the
-// maximum lies at the start of the data". The filter's edge is now left out of the ℰ search.
+// maximum lies at the start of the data". The search now starts past that falling edge transient.
 TEST(AnalyzeCurve, TheFiltersEdgeDoesNotWinTheEnergyRateMaximum) {
   using namespace calibration;
   const auto set = eighth_held_out_shapes();
