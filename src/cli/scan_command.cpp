@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "loading/run.hpp"
+#include "rupture/version.hpp"
 #include "scan/claims.hpp"
 #include "scan/farm.hpp"
 #include "scan/ledger.hpp"
@@ -92,7 +93,8 @@ void run(const ScanOptions& o) {
     const scan::Plan plan = scan::read_plan(o.target);
     std::size_t done = 0;
     for (const auto& point : plan.points) done += scan::reanalyze_point(plan, point);
-    scan::write_aggregate(plan, {{"command", command_line(o)}});
+    scan::write_aggregate(
+        plan, {{"reanalysed", {{"command", command_line(o) + " --reanalyze"}, {"version", version_string}}}});
     fmt::print("re-analysed {} of {} points; wrote {}\n", done, plan.points.size(),
                (plan.folder / "results.csv").string());
     return;

@@ -297,13 +297,24 @@ void write_aggregate(const Plan& plan, const nlohmann::json& info) {
                                                               "text columns have none, an empty field is a "
                                                               "missing value (docs/formats.md)",
                                                               version_string)}));
-  nlohmann::json scan = {{"tool", "rupture scan"},
-                         {"version", version_string},
-                         {"scan_config", plan.scan_config},
-                         {"base", plan.base.string()},
-                         {"points_total", plan.points.size()},
-                         {"counts", counts},
-                         {"points", points}};
+  // A re-analysis keeps the run's record (its command, version, cores and wall time) and adds its
+  // own beside it: the runs it analysed are still those.
+  const bool reanalysis = info.contains("reanalysed");
+  nlohmann::json scan = nlohmann::json::object();
+  if (const auto previous = plan.folder / "scan.json"; reanalysis && std::filesystem::exists(previous)) {
+    try {
+      scan = nlohmann::json::parse(io::read_text_file(previous));
+    } catch (const nlohmann::json::exception&) {
+      scan = nlohmann::json::object();  // unreadable: the aggregate below is still whole
+    }
+  }
+  if (!reanalysis || !scan.contains("version")) scan["version"] = version_string;
+  scan.update({{"tool", "rupture scan"},
+               {"scan_config", plan.scan_config},
+               {"base", plan.base.string()},
+               {"points_total", plan.points.size()},
+               {"counts", counts},
+               {"points", points}});
   scan.update(info);
   io::write_json_atomically(plan.folder / "scan.json", scan);
 }
