@@ -1,5 +1,5 @@
-# rupture 0.1.0 (cdf1b70) plot docs/study/small-absolute
-# read: docs/study/small-absolute/results.csv
+# rupture 0.1.0 (7660f46-dirty) plot small-absolute
+# read: small-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,11 +35,11 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "delay_vs_critical.pdf"
   }
-  set title "Delay of failure behind the precursor (43 analysed points; 4 with δ_x ≤ 0 cannot be shown on log axes)"
+  set title "Delay of failure behind the precursor (41 analysed points; 4 with δ_x ≤ 0 cannot be shown on log axes)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.027182837970443047:62.89366026618375]
-  set yrange [0.0009060945990147683:62.89366026618375]
+  set xrange [0.027182180377786996:62.89366026618375]
+  set yrange [0.0009060726792595666:62.89366026618375]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

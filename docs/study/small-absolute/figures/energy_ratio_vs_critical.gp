@@ -1,5 +1,5 @@
-# rupture 0.1.0 (cdf1b70) plot docs/study/small-absolute
-# read: docs/study/small-absolute/results.csv
+# rupture 0.1.0 (7660f46-dirty) plot small-absolute
+# read: small-absolute/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,7 +35,7 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "energy_ratio_vs_critical.pdf"
   }
-  set title "Energy ratio A_r against critical strain (43 analysed points)"
+  set title "Energy ratio A_r against critical strain (41 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
   set xrange [0.026409106039187547:62.89366026618375]

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (cdf1b70) plot docs/study/small-absolute
-# read: docs/study/small-absolute/results.csv
+# rupture 0.1.0 (7660f46-dirty) plot small-absolute
+# read: small-absolute/results.csv
 # Draws mechanism_map.png, mechanism_map.svg and/or mechanism_map.pdf from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"

@@ -1,4 +1,4 @@
-# rupture 0.1.0 (cdf1b70) plot docs/study/small-relative
+# rupture 0.1.0 (9b147a5-dirty) plot docs/study/small-relative
 # read: docs/study/small-relative/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -35,10 +35,10 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "energy_ratio_vs_critical.pdf"
   }
-  set title "Energy ratio A_r against critical strain (37 analysed points)"
+  set title "Energy ratio A_r against critical strain (31 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.024263487209831642:108.96882707563012]
+  set xrange [0.02425351317705445:50.4169667012346]
   set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics autofreq
