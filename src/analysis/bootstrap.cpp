@@ -114,9 +114,13 @@ bool random_walk_dominates(const NoiseModel& model) {
   return dominated(model.force) || dominated(model.energy);
 }
 
+// A quarter needs the structure function's longest lag (8) on both sides of 17 samples.
+constexpr std::size_t shortest_quarter = 33;
+
 int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
                             std::size_t high) {
   high = std::min(high, force.size() - 1);
+  if (high < low || high - low + 1 < 4 * shortest_quarter) return 0;
   const std::size_t n = high + 1 - low;
   int quarters = 0;
   for (std::size_t q = 0; q < 4; ++q)

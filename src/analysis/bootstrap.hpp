@@ -49,7 +49,7 @@ bool random_walk_dominates(const NoiseModel& model);
 // fit's single curvature term cannot absorb it and it inflates the white term, so the whole-curve
 // reading takes some finite bundles for white noise. Measured by bench/noise_kind_votes; not the
 // analysis's choice, which reads the whole curve (docs/analysis.md, "Calibration", held-out 8: on
-// DEM curves the quarter reading moved x_c).
+// DEM curves the quarter reading moved x_c). 0 for a span too short for quarters of 33 samples.
 int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
                             std::size_t high);
 

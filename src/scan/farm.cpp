@@ -307,6 +307,7 @@ void write_aggregate(const Plan& plan, const nlohmann::json& info) {
     } catch (const nlohmann::json::exception&) {
       scan = nlohmann::json::object();  // unreadable: the aggregate below is still whole
     }
+    if (!scan.is_object()) scan = nlohmann::json::object();
   }
   if (!reanalysis || !scan.contains("version")) scan["version"] = version_string;
   scan.update({{"tool", "rupture scan"},

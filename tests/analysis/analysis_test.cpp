@@ -266,24 +266,6 @@ TEST(AnalyzeCurve, ShiftL1WithANonPositiveScaleIsRejected) {
   EXPECT_NE(r.rejection.find("no positive scale c"), std::string::npos) << r.rejection;
 }
 
-// α = 7 under 1 % white noise, 5000 rows (held-out 8's curve 31): the Butterworth filter (cutoff
-// 0.017) pins the filtered E_e to its noisy first sample, and over the next ~1/cutoff samples its
-// slope reached 1.1, twice ℰ's true maximum (0.55 at x = 0.62): the curve was rejected with "the
-// maximum lies at the start of the data". The search now starts past that falling edge transient.
-TEST(AnalyzeCurve, TheFiltersEdgeDoesNotWinTheEnergyRateMaximum) {
-  using namespace calibration;
-  const auto set = eighth_held_out_shapes();
-  const auto curve_case = CalibrationCase::at(set, 31);
-  ASSERT_EQ(curve_case.shape.name, "powerlaw alpha=7");
-  ASSERT_EQ(curve_case.rows, 5000u);
-  const auto t = truth(curve_case.shape);
-  const auto r = analyze_curve(curve_case.draw({"white 1 %", 0.01, 0}), {});
-  ASSERT_TRUE(r.accepted) << r.rejection;
-  EXPECT_GT(r.x_p->value, 0.5);
-  EXPECT_LE(r.delay->ci95_low, t.delta());
-  EXPECT_GE(r.delay->ci95_high, t.delta());
-}
-
 TEST(AnalyzeCurve, TooFewRowsIsBadInput) {
   auto c = power_law_curve(0.0, 10);
   try {
@@ -332,9 +314,10 @@ TEST(NoiseModel, SeparatesWhiteNoiseFromARandomWalk) {
 
 // A bundle with a sharp force peak (α = 4, 300 rows; held-out 7's curve 1 at 10^5 fibers): over the
 // whole curve the collapse inflates the white term and the model reads white noise (the known limit
-// "a finite bundle read as white noise"), while in most of its quarters the walk dominates. Under
-// white noise, even at 0.2 % where the peak is sharpest against the noise, no quarter reads as a
-// walk. The quarter count is what bench/noise_kind_votes measures (docs/analysis.md, held-out 8).
+// "a finite bundle read as white noise"), while in at least 2 of its 4 quarters the walk dominates.
+// Under white noise, even at 0.2 % where the peak is sharpest against the noise, no quarter reads
+// as a walk. The quarter count is what bench/noise_kind_votes measures (docs/analysis.md, held-out
+// 8). The whole-curve expectation pins that known limit: a fix of it changes this test.
 TEST(NoiseModel, QuartersOfASharplyPeakedBundleReadAsARandomWalk) {
   using namespace calibration;
   const auto set = seventh_held_out_shapes();

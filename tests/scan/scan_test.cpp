@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "dem/system.hpp"
 #include "figures/scan_fixture.hpp"
+#include "rupture/version.hpp"
 #include "sample/formats.hpp"
 #include "sample/lattice.hpp"
 #include "scan/claims.hpp"
@@ -485,7 +486,14 @@ TEST(ScanCommand, ReanalyzeRewritesTheAnalysisAndKeepsTheRuns) {
   std::filesystem::remove(attempt / "analysis.json");
   // A point never started (as in a scan stopped early) is left pending.
   std::filesystem::remove_all(scan / "points" / "kn_10000_bd_0.004");
-  const auto run_record = nlohmann::json::parse(slurp(scan / "scan.json"));
+  // The run's record, marked as an older version's run so that keeping it is visible.
+  auto run_record = nlohmann::json::parse(slurp(scan / "scan.json"));
+  run_record["version"] = "0.0.1 (an older build)";
+  run_record["command"] = "rupture scan the-original-command";
+  {
+    std::ofstream out(scan / "scan.json");
+    out << run_record.dump(2);
+  }
   const auto again = run_rupture("scan --reanalyze " + shell_quoted(scan));
   ASSERT_EQ(again.exit_code, 0) << again.err;
   // The run's record survives; the re-analysis adds its own.
@@ -493,6 +501,7 @@ TEST(ScanCommand, ReanalyzeRewritesTheAnalysisAndKeepsTheRuns) {
   for (const char* key : {"command", "version", "cores", "jobs", "wall_time"})
     EXPECT_EQ(record.at(key), run_record.at(key)) << key;
   EXPECT_NE(record.at("reanalysed").at("command").get<std::string>().find("--reanalyze"), std::string::npos);
+  EXPECT_EQ(record.at("reanalysed").at("version"), rupture::version_string);
   EXPECT_NE(again.out.find("re-analysed 5 of 6 points"), std::string::npos) << again.out;
   EXPECT_TRUE(std::filesystem::exists(attempt / "analysis.json"));
   EXPECT_EQ(slurp(attempt / "curves.csv"), curves);  // the run is untouched
