@@ -97,7 +97,7 @@ struct AnalysisOptions {
 
 // How far δ_x's bootstrap intervals (fitted-maxima method) are stretched or shrunk about the
 // estimate, per level and per kind of noise the analysis tells apart
-// (AnalysisResult::filter_on_increments): split-conformal quantiles of the stretch each interval
+// (reads_random_walk): split-conformal quantiles of the stretch each interval
 // needed to reach the true δ_x (bench/interval_scales.py; docs/analysis.md, "Calibration"), rounded
 // up to four digits, learned on the tuning set and the fifth held-out set's smooth shapes pooled.
 // A kind's factors ship only if they pass the check fixed before it was run, on the untouched sixth
@@ -141,8 +141,10 @@ struct AlphaEstimate {
 struct AnalysisResult {
   std::string source;
   ResampleReport resample;
-  FilterSettings filter;                     // with the automatic choices filled in
-  bool filter_on_increments = false;         // the automatic choice ran on the increments (random-walk noise)
+  FilterSettings filter;  // with the automatic choices filled in
+  // The noise kind read in each curve over the whole record: whether a random walk dominates it.
+  // One filter serves both; its automatic choice ran on the increments where either reads so.
+  bool force_walk = false, energy_walk = false;
   IntervalScales interval_scales{1.0, 1.0};  // the factors applied to δ_x's intervals (fitted maxima)
   int derivative_window = 0;
   double force_noise = 0.0, energy_noise = 0.0;               // σ̂ of the raw curves (third differences)
@@ -182,8 +184,10 @@ std::string precursor_order(double ci95_low, double ci95_high);
 // are not errors: they come back with accepted = false and the reason.
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks = {});
 
-// The kind of noise the analysis read in the curve, as written to analysis.json: "random walk" where
-// a random walk dominates it (the filter chosen on the increments), else "white".
+// Whether a random walk dominates the noise of F or of E_e: the filter was then chosen on the
+// increments, and δ_x's intervals take that kind's factors.
+bool reads_random_walk(const AnalysisResult& result);
+// The same in words, as written to analysis.json: "random walk" or "white".
 std::string noise_kind(const AnalysisResult& result);
 
 // Everything in the result except the grid curves, each number as {value, error, unit}; the

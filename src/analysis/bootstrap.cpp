@@ -107,11 +107,12 @@ NoiseModel estimate_noise(std::span<const double> force, std::span<const double>
   return model;
 }
 
+bool random_walk_dominates(const NoiseComponents& curve) {
+  return 2.0 * curve.walk * curve.walk > 6.0 * curve.white * curve.white;
+}
+
 bool random_walk_dominates(const NoiseModel& model) {
-  const auto dominated = [](const NoiseComponents& c) {
-    return 2.0 * c.walk * c.walk > 6.0 * c.white * c.white;
-  };
-  return dominated(model.force) || dominated(model.energy);
+  return random_walk_dominates(model.force) || random_walk_dominates(model.energy);
 }
 
 // A quarter needs the structure function's longest lag (8) on both sides of 17 samples.

@@ -40,8 +40,10 @@ struct NoiseModel {
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
                           std::size_t high);
 
-// Whether a random walk dominates the noise of F or of E_e: its share of the lag-1 structure
-// function, 2σ_r², exceeds white noise's, 6σ_w².
+// Whether a random walk dominates one curve's noise: its share of the lag-1 structure function,
+// 2σ_r², exceeds white noise's, 6σ_w².
+bool random_walk_dominates(const NoiseComponents& curve);
+// Whether it dominates the noise of F or of E_e.
 bool random_walk_dominates(const NoiseModel& model);
 
 // How many of the four quarters of [low, high] a random walk dominates, each quarter's noise

@@ -101,7 +101,8 @@ void run(const ScanOptions& o) {
   }
   if (o.collect && std::filesystem::is_directory(o.target)) {
     const scan::Plan plan = scan::read_plan(o.target);
-    scan::write_aggregate(plan, {{"command", command_line(o) + " --collect"}});
+    scan::write_aggregate(
+        plan, {{"collected", {{"command", command_line(o) + " --collect"}, {"version", version_string}}}});
     fmt::print("{}", scan::status_report(plan));
     fmt::print("wrote {} and {}\n", (plan.folder / "results.csv").string(),
                (plan.folder / "scan.json").string());
@@ -116,7 +117,8 @@ void run(const ScanOptions& o) {
     return;
   }
   if (o.collect) {
-    scan::write_aggregate(plan, {{"command", command_line(o) + " --collect"}});
+    scan::write_aggregate(
+        plan, {{"collected", {{"command", command_line(o) + " --collect"}, {"version", version_string}}}});
     fmt::print("{}", scan::status_report(plan));
     return;
   }

@@ -149,6 +149,9 @@ void add_delay_panel(Figure& figure, const nlohmann::json& delta) {
   const std::string what = sampled ? "sampling density (bootstrap)" : "posterior density";
   const auto& delta_values = posterior.at("delta");
   const auto& density = posterior.at("density");
+  // Every bootstrap replicate failed (a curve the analysis rejects can come to that): no density to
+  // draw, and gnuplot refuses an empty block.
+  if (density.at("value").empty()) return;
   const std::string unit = delta_values.at("unit").get<std::string>();
   const std::string density_unit = density.at("unit").get<std::string>();
   figure.blocks.push_back({what + " of the delay delta_x",

@@ -297,11 +297,11 @@ void write_aggregate(const Plan& plan, const nlohmann::json& info) {
                                                               "text columns have none, an empty field is a "
                                                               "missing value (docs/formats.md)",
                                                               version_string)}));
-  // A re-analysis keeps the run's record (its command, version, cores and wall time) and adds its
-  // own beside it: the runs it analysed are still those.
-  const bool reanalysis = info.contains("reanalysed");
+  // A re-analysis or a collection keeps the run's record (its command, version, cores and wall
+  // time) and adds its own beside it: the runs it aggregates are still those.
+  const bool after_the_run = info.contains("reanalysed") || info.contains("collected");
   nlohmann::json scan = nlohmann::json::object();
-  if (const auto previous = plan.folder / "scan.json"; reanalysis && std::filesystem::exists(previous)) {
+  if (const auto previous = plan.folder / "scan.json"; after_the_run && std::filesystem::exists(previous)) {
     try {
       scan = nlohmann::json::parse(io::read_text_file(previous));
     } catch (const nlohmann::json::exception&) {
@@ -309,7 +309,7 @@ void write_aggregate(const Plan& plan, const nlohmann::json& info) {
     }
     if (!scan.is_object()) scan = nlohmann::json::object();
   }
-  if (!reanalysis || !scan.contains("version")) scan["version"] = version_string;
+  if (!after_the_run || !scan.contains("version")) scan["version"] = version_string;
   scan.update({{"tool", "rupture scan"},
                {"scan_config", plan.scan_config},
                {"base", plan.base.string()},

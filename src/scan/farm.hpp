@@ -46,8 +46,9 @@ std::size_t run_scan(const Plan& plan, const Sample& sample, const FarmOptions& 
 void run_task(const Plan& plan, const Sample& sample, std::size_t index, int threads, bool print);
 
 // results.csv and scan.json from the ledger; `info` (jobs, threads, ranks, wall time, command) is
-// merged into scan.json. An `info` holding "reanalysed" keeps the run's own record of the previous
-// scan.json (command, version, cores, wall time) and adds the re-analysis's beside it.
+// merged into scan.json. An `info` holding "reanalysed" or "collected" keeps the run's own record of
+// the previous scan.json (command, version, cores, wall time), where there is one, and adds its own
+// beside it.
 void write_aggregate(const Plan& plan, const nlohmann::json& info);
 
 // A table of every point's state for --status, and the counts per state (the last line).

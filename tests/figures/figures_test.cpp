@@ -143,13 +143,18 @@ std::size_t rows_of(const std::vector<Block>& all, const std::string& title) {
   return b ? b->rows.size() : 0;
 }
 
-TEST(Figures, RunFolderWithAnalysisAndBreaks) {
-  TempDir dir;
-  const auto run = dir / "run";
+// The block example run into `run` and its curve analysed beside it (accepted or rejected).
+void run_and_analyse_block(const fs::path& run) {
   ASSERT_EQ(
       run_rupture("run " + shell_quoted(examples + "block.toml") + " -o " + shell_quoted(run)).exit_code, 0);
   const auto analysed = run_rupture("analyze " + shell_quoted(run / "curves.csv"));
   ASSERT_TRUE(analysed.exit_code == 0 || analysed.exit_code == 4) << analysed.err;  // 4: analysed, rejected
+}
+
+TEST(Figures, RunFolderWithAnalysisAndBreaks) {
+  TempDir dir;
+  const auto run = dir / "run";
+  ASSERT_NO_FATAL_FAILURE(run_and_analyse_block(run));
   const auto out = dir / "figs";
   const auto r = run_rupture("plot " + shell_quoted(run) + " --out " + shell_quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -182,6 +187,25 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
         << i;
   expect_silent_rerun(out, "loading");
   expect_silent_rerun(out, "breaking_rate");
+}
+
+// A curve whose every bootstrap replicate failed carries an empty sampling density of δ_x: the
+// figure is drawn without that panel instead of handing gnuplot an empty block.
+TEST(Figures, DelayPanelIsLeftOutWhenNoReplicateSucceeded) {
+  TempDir dir;
+  const auto run = dir / "run";
+  ASSERT_NO_FATAL_FAILURE(run_and_analyse_block(run));
+  auto analysis = nlohmann::json::parse(slurp(run / "analysis.json"));
+  auto& density = analysis.at("delta_x").at("sampling_distribution");
+  ASSERT_FALSE(density.at("density").at("value").empty());
+  density["delta"]["value"] = nlohmann::json::array();
+  density["density"]["value"] = nlohmann::json::array();
+  io::write_json_atomically(run / "analysis.json", analysis);
+  const auto r =
+      run_rupture("plot " + shell_quoted(run) + " --format png --out " + shell_quoted(dir / "figs"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(png_size(dir / "figs" / "loading.png").height, 700u);  // one panel
+  EXPECT_EQ(blocks(dir / "figs" / "loading.dat").size(), 2u);      // curves and ℰ, no density
 }
 
 TEST(Figures, RunCurvesAreNormalisedAndBreaksCounted) {

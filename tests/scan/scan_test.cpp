@@ -590,6 +590,17 @@ TEST(ScanCommand, ArrayTasksThenCollectGiveTheSameResults) {
   ASSERT_EQ(collect.exit_code, 0) << collect.out;
   EXPECT_NE(collect.out.find("6 points: 6 done"), std::string::npos) << collect.out;
   EXPECT_EQ(physics(dir / "whole" / "results.csv"), physics(array / "results.csv"));
+  const auto collected = nlohmann::json::parse(slurp(array / "scan.json"));
+  EXPECT_NE(collected.at("collected").at("command").get<std::string>().find("--collect"), std::string::npos);
+  EXPECT_EQ(collected.at("points").size(), 6u);
+  // Collecting a scan that ran whole keeps that run's record and adds the collection's beside it.
+  const auto run_record = nlohmann::json::parse(slurp(dir / "whole" / "scan.json"));
+  const auto again = run_rupture("scan --collect " + shell_quoted(dir / "whole"));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const auto kept = nlohmann::json::parse(slurp(dir / "whole" / "scan.json"));
+  for (const char* key : {"command", "version", "cores", "jobs", "wall_time"})
+    EXPECT_EQ(kept.at(key), run_record.at(key)) << key;
+  EXPECT_EQ(kept.at("collected").at("version"), rupture::version_string);
 }
 
 TEST(ScanCommand, APointHeldByAnotherProcessIsLeftToIt) {
