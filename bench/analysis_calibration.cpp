@@ -3,9 +3,10 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-11|all]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-12|all]
 // [per-curve CSV] [all|white|bundle|mixed: the noise groups, default all; mixed: bundles whose F also
-// carries white noise, as DEM curves do].
+// carries white noise, as DEM curves do] [walk-profile: random-walk steps that follow the curve
+// (BootstrapOptions::walk_profile), not yet the default].
 // The per-curve file holds each curve's truth, estimates and intervals, from which
 // bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
 // a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run
@@ -29,11 +30,17 @@ int main(int argc, char** argv) {
   const std::string which = argc > 2 ? argv[2] : "tuning";
   const std::vector<Shape> chosen = calibration_set(which);
   const std::string kinds = argc > 4 ? argv[4] : "all";
+  const std::string variant = argc > 5 ? argv[5] : "";
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-11, all\n",
+                 "held-out-12, all\n",
                  which.c_str());
+    return 2;
+  }
+  if (!variant.empty() && variant != "walk-profile") {
+    std::fprintf(stderr, "analysis_calibration: unknown variant '%s'; name walk-profile or nothing\n",
+                 variant.c_str());
     return 2;
   }
   if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed") {
@@ -58,6 +65,7 @@ int main(int argc, char** argv) {
   AnalysisOptions
       unscaled;  // the bootstrap's own intervals: interval_scales.py learns and checks the factors
   unscaled.calibrated_intervals = false;
+  unscaled.uncertainty.walk_profile = variant == "walk-profile";
   std::printf(
       "| group | curves | accepted | δ_x 68 %% | δ_x 95 %% | x_c 95 %% | x_p 95 %% | δ_x mean rel. error | "
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");

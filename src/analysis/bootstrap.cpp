@@ -130,17 +130,66 @@ int walk_dominated_quarters(std::span<const double> force, std::span<const doubl
   return quarters;
 }
 
+namespace {
+
+// Relative walk step of one curve along [low, high] (see add_walk_profiles); empty without a walk.
+std::vector<double> walk_profile(std::span<const double> y, std::size_t low, std::size_t high,
+                                 const NoiseComponents& fitted) {
+  const std::size_t n = high - low + 1;
+  if (!random_walk_dominates(fitted) || n < 8) return {};
+  std::vector<double> d(n, std::nan(""));
+  for (std::size_t i = 1; i + 1 < n; ++i) d[i] = y[low + i + 1] - 2.0 * y[low + i] + y[low + i - 1];
+  std::vector<double> finite(d.begin() + 1, d.end() - 1);
+  const double limit = 10.0 * robust_scale(finite);
+  for (auto& v : d)
+    if (limit > 0.0 && std::abs(v) > limit) v = std::nan("");
+  const std::size_t half =
+      static_cast<std::size_t>(std::clamp<double>(static_cast<double>(n) / 16.0, 7.0, 100.0));
+  // Running sums of d² and of counts, so that each window is O(1).
+  std::vector<double> sum(n + 1, 0.0), count(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool ok = !std::isnan(d[i]);
+    sum[i + 1] = sum[i] + (ok ? d[i] * d[i] : 0.0);
+    count[i + 1] = count[i] + (ok ? 1.0 : 0.0);
+  }
+  const double white_part = 6.0 * fitted.white * fitted.white, floor = 0.01 * fitted.walk * fitted.walk;
+  std::vector<double> walk2(n);
+  double mean = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t from = i > half ? i - half : 0, to = std::min(n, i + half + 1);
+    const double c = count[to] - count[from];
+    const double local = c > 0.0 ? (sum[to] - sum[from]) / c : 0.0;
+    walk2[i] = std::max(0.5 * (local - white_part), floor);
+    mean += walk2[i];
+  }
+  mean /= static_cast<double>(n);
+  for (auto& w : walk2) w = std::sqrt(w / mean);
+  return walk2;
+}
+
+}  // namespace
+
+void add_walk_profiles(NoiseModel& model, std::span<const double> force, std::span<const double> energy,
+                       std::size_t low, std::size_t high) {
+  high = std::min(high, force.size() - 1);
+  model.force.walk_profile = walk_profile(force, low, high, model.force);
+  model.energy.walk_profile = walk_profile(energy, low, high, model.energy);
+}
+
 void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,
                      std::uint64_t seed, std::uint64_t replicate) {
   assert(force.size() == energy.size());
   Rng rng(seed, RandomStream::analysis_bootstrap, replicate);
   const double rho = model.correlation, rest = std::sqrt(std::max(0.0, 1.0 - rho * rho));
+  const auto step = [](const NoiseComponents& c, std::size_t i) {
+    return i < c.walk_profile.size() ? c.walk * c.walk_profile[i] : c.walk;
+  };
   double walk_force = 0.0, walk_energy = 0.0;
   for (std::size_t i = 0; i < force.size(); ++i) {
     const double a = rng.normal(), b = rng.normal(), c = rng.normal(), d = rng.normal();
     if (i > 0) {
-      walk_force += model.force.walk * c;
-      walk_energy += model.energy.walk * (rho * c + rest * d);
+      walk_force += step(model.force, i) * c;
+      walk_energy += step(model.energy, i) * (rho * c + rest * d);
     }
     force[i] += model.force.white * a + walk_force;
     energy[i] += model.energy.white * (rho * a + rest * b) + walk_energy;

@@ -22,9 +22,13 @@
 namespace rupture::analysis {
 
 // Noise of one curve, per sample: white noise of standard deviation `white` plus a random walk
-// whose increments have standard deviation `walk`.
+// whose increments have standard deviation `walk`, or walk × walk_profile[i] at sample i of the span
+// where a profile is given (its mean square is 1: a finite bundle's steps grow with the strain, so
+// that the span's mean step over-states the noise at x_p twofold; docs/analysis.md, "The walk's
+// steps along the curve").
 struct NoiseComponents {
   double white = 0.0, walk = 0.0;
+  std::vector<double> walk_profile;  // empty: the same step everywhere
 };
 
 struct NoiseModel {
@@ -55,6 +59,13 @@ bool random_walk_dominates(const NoiseModel& model);
 int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
                             std::size_t high);
 
+// Fills each curve's walk_profile over [low, high] (the model fitted there): the local mean square
+// of the lag-1 second differences over a running window (an eighth of the span, 15 to 201 samples;
+// values beyond 10 robust sd left out, as in the fit), less the white term, relative to its mean.
+// A curve whose noise a walk does not dominate keeps an empty profile (the same step everywhere).
+void add_walk_profiles(NoiseModel& model, std::span<const double> force, std::span<const double> energy,
+                       std::size_t low, std::size_t high);
+
 // Adds one draw of the model's noise to `force` and `energy` (same length), from a generator
 // seeded by (seed, replicate): the draw depends on nothing else. The random walk starts at 0 on the
 // first sample: only its increments inside the span move a maximum.
@@ -73,6 +84,9 @@ using PeakMeasure =
 struct BootstrapOptions {
   int replicates = 200;
   std::uint64_t seed = 1;
+  // Random-walk steps that follow the curve (add_walk_profiles). Measured on the tuning set, not yet
+  // checked on a held-out set, so off by default (docs/analysis.md).
+  bool walk_profile = false;
 };
 
 struct BootstrapResult {
