@@ -3,7 +3,8 @@
 // for F or E_e: random_walk_dominates) from the whole curve, as the analysis decides it, beside the
 // number of the curve's quarters where it holds (walk_dominated_quarters; a walk in at least 2 of the
 // 4 finds the bundles the whole curve misses), and the whole curve's verdict for F and for E_e apart (where
-// they differ each curve gets its own filter). Prints one CSV row per curve: set, group, shape, rows,
+// they differ the analysis warns; docs/analysis.md, "A filter per curve"), for the noise groups and the
+// mixed (DEM-like) groups. Prints one CSV row per curve: set, group, shape, rows,
 // whole (0/1), quarters (0-4), force (0/1), energy (0/1). The curves are those of bench/analysis_calibration
 // (same shapes, rows and seeds). Usage: noise_kind_votes [curves per group = 36] [set ... as
 // analysis_calibration names them; default tuning, held-out-5, held-out-6, held-out-7].

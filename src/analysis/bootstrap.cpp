@@ -24,20 +24,25 @@ struct StructureFunction {
   std::vector<double> d1;  // second differences at L = 1 (NaN where left out)
 };
 
+// Marks the second differences beyond 10 robust sd as left out (NaN): a sudden drop at failure is
+// no noise.
+void leave_out_outliers(std::span<double> d) {
+  const double limit = d.empty() ? 0.0 : 10.0 * robust_scale(d);
+  for (auto& v : d)
+    if (limit > 0.0 && std::abs(v) > limit) v = std::nan("");
+}
+
 StructureFunction structure_function(std::span<const double> y, std::size_t low, std::size_t high) {
   StructureFunction f;
   for (int L : scales) {
     const auto l = static_cast<std::size_t>(L);
     std::vector<double> d;
     for (std::size_t i = low + l; i + l <= high; ++i) d.push_back(y[i + l] - 2.0 * y[i] + y[i - l]);
-    const double limit = d.empty() ? 0.0 : 10.0 * robust_scale(d);
+    leave_out_outliers(d);
     double sum = 0.0;
     std::size_t kept = 0;
-    for (auto& v : d) {
-      if (limit > 0.0 && std::abs(v) > limit) {
-        v = std::nan("");
-        continue;
-      }
+    for (double v : d) {
+      if (std::isnan(v)) continue;
       sum += v * v;
       ++kept;
     }
@@ -139,10 +144,7 @@ std::vector<double> walk_profile(std::span<const double> y, std::size_t low, std
   if (!random_walk_dominates(fitted) || n < 8) return {};
   std::vector<double> d(n, std::nan(""));
   for (std::size_t i = 1; i + 1 < n; ++i) d[i] = y[low + i + 1] - 2.0 * y[low + i] + y[low + i - 1];
-  std::vector<double> finite(d.begin() + 1, d.end() - 1);
-  const double limit = 10.0 * robust_scale(finite);
-  for (auto& v : d)
-    if (limit > 0.0 && std::abs(v) > limit) v = std::nan("");
+  leave_out_outliers(std::span<double>(d).subspan(1, n - 2));
   const std::size_t half =
       static_cast<std::size_t>(std::clamp<double>(static_cast<double>(n) / 16.0, 7.0, 100.0));
   // Running sums of d² and of counts, so that each window is O(1).
