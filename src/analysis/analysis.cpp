@@ -366,7 +366,7 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
   run.high = std::min(n - 1, core_high + pad);
   const std::size_t count = run.high - run.low + 1;
   run.noise = estimate_noise(force, energy, run.low, run.high);
-  if (options.walk_profile) add_walk_profiles(run.noise, force, energy, run.low, run.high);
+  if (options.walk_profile) add_walk_profiles(run.noise, xs, force, run.low, run.high);
   const auto window_x = xs.subspan(run.low, count);
   PeakSearch replicate_search = search;
   replicate_search.margin_low = core_low - run.low;

@@ -137,45 +137,59 @@ int walk_dominated_quarters(std::span<const double> force, std::span<const doubl
 
 namespace {
 
-// Relative walk step of one curve along [low, high] (see add_walk_profiles); empty without a walk.
-std::vector<double> walk_profile(std::span<const double> y, std::size_t low, std::size_t high,
-                                 const NoiseComponents& fitted) {
-  const std::size_t n = high - low + 1;
-  if (!random_walk_dominates(fitted) || n < 8) return {};
-  std::vector<double> d(n, std::nan(""));
-  for (std::size_t i = 1; i + 1 < n; ++i) d[i] = y[low + i + 1] - 2.0 * y[low + i] + y[low + i - 1];
-  leave_out_outliers(std::span<double>(d).subspan(1, n - 2));
+// Relative walk step along [low, high] of a curve whose noise comes from breaks: step² ∝ x^(2
+// power) · s(x), s = −d(F/x)/dx the rate at which the secant stiffness falls (power 1 for F, 2 for
+// E_e); empty where the stiffness never falls. F/x is averaged over `half` samples on each side
+// before the difference: the counts of breaks are themselves the noise.
+std::vector<double> damage_profile(std::span<const double> strain, std::span<const double> force,
+                                   std::size_t low, std::size_t high, int power) {
+  const std::size_t n = high - low + 1, size = strain.size();
   const std::size_t half =
-      static_cast<std::size_t>(std::clamp<double>(static_cast<double>(n) / 16.0, 7.0, 100.0));
-  // Running sums of d² and of counts, so that each window is O(1).
-  std::vector<double> sum(n + 1, 0.0), count(n + 1, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool ok = !std::isnan(d[i]);
-    sum[i + 1] = sum[i] + (ok ? d[i] * d[i] : 0.0);
-    count[i + 1] = count[i] + (ok ? 1.0 : 0.0);
-  }
-  const double white_part = 6.0 * fitted.white * fitted.white, floor = 0.01 * fitted.walk * fitted.walk;
-  std::vector<double> walk2(n);
+      static_cast<std::size_t>(std::clamp<double>(static_cast<double>(n) / 16.0, 3.0, 200.0));
+  // Running sums of the secant stiffness F/x (at x <= 0, the first defined value).
+  std::vector<double> sum(size + 1, 0.0);
+  double first = std::nan("");
+  for (std::size_t i = 0; i < size && std::isnan(first); ++i)
+    if (strain[i] > 0.0) first = force[i] / strain[i];
+  for (std::size_t i = 0; i < size; ++i)
+    sum[i + 1] = sum[i] + (strain[i] > 0.0 ? force[i] / strain[i] : first);
+  const auto mean_over = [&](std::size_t from, std::size_t to) {  // [from, to], clamped to the curve
+    to = std::min(to, size - 1);
+    from = std::min(from, to);
+    return (sum[to + 1] - sum[from]) / static_cast<double>(to + 1 - from);
+  };
+  const double step = strain[1] - strain[0];
+  std::vector<double> profile(n);
   double mean = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t from = i > half ? i - half : 0, to = std::min(n, i + half + 1);
-    const double c = count[to] - count[from];
-    const double local = c > 0.0 ? (sum[to] - sum[from]) / c : 0.0;
-    walk2[i] = std::max(0.5 * (local - white_part), floor);
-    mean += walk2[i];
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t i = low + j;
+    const double before = mean_over(i > half ? i - half : 0, i > 0 ? i - 1 : 0),
+                 after = mean_over(i + 1, i + half);
+    const double softening = (before - after) / (step * static_cast<double>(half + 1));
+    profile[j] = std::pow(strain[i], 2 * power) * std::max(softening, 0.0);
+    mean += profile[j] / static_cast<double>(n);
   }
-  mean /= static_cast<double>(n);
-  for (auto& w : walk2) w = std::sqrt(w / mean);
-  return walk2;
+  if (!(mean > 0.0) || !std::isfinite(mean)) return {};
+  double floored_mean = 0.0;
+  for (auto& p : profile) {
+    p = std::max(p, 0.01 * mean);
+    floored_mean += p / static_cast<double>(n);
+  }
+  for (auto& p : profile) p = std::sqrt(p / floored_mean);
+  return profile;
 }
 
 }  // namespace
 
-void add_walk_profiles(NoiseModel& model, std::span<const double> force, std::span<const double> energy,
+void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
                        std::size_t low, std::size_t high) {
+  assert(strain.size() == force.size() && strain.size() >= 2);
   high = std::min(high, force.size() - 1);
-  model.force.walk_profile = walk_profile(force, low, high, model.force);
-  model.energy.walk_profile = walk_profile(energy, low, high, model.energy);
+  model.force.walk_profile = random_walk_dominates(model.force) ? damage_profile(strain, force, low, high, 1)
+                                                                : std::vector<double>{};
+  model.energy.walk_profile = random_walk_dominates(model.energy)
+                                  ? damage_profile(strain, force, low, high, 2)
+                                  : std::vector<double>{};
 }
 
 void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,

@@ -23,9 +23,9 @@ namespace rupture::analysis {
 
 // Noise of one curve, per sample: white noise of standard deviation `white` plus a random walk
 // whose increments have standard deviation `walk`, or walk × walk_profile[i] at sample i of the span
-// where a profile is given (its mean square is 1: a finite bundle's steps grow with the strain, so
-// that the span's mean step over-states the noise at x_p twofold; docs/analysis.md, "The walk's
-// steps along the curve").
+// where a profile is given (its mean square is 1: a finite bundle's steps grow with the strain and
+// the break density, so that the span's mean step over-states E_e's noise at x_p about fourfold;
+// docs/analysis.md, "The walk's steps along the curve").
 struct NoiseComponents {
   double white = 0.0, walk = 0.0;
   std::vector<double> walk_profile;  // empty: the same step everywhere
@@ -59,11 +59,15 @@ bool random_walk_dominates(const NoiseModel& model);
 int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
                             std::size_t high);
 
-// Fills each curve's walk_profile over [low, high] (the model fitted there): the local mean square
-// of the lag-1 second differences over a running window (an eighth of the span, 15 to 201 samples;
-// values beyond 10 robust sd left out, as in the fit), less the white term, relative to its mean.
-// A curve whose noise a walk does not dominate keeps an empty profile (the same step everywhere).
-void add_walk_profiles(NoiseModel& model, std::span<const double> force, std::span<const double> energy,
+// Fills each walk-dominated curve's walk_profile over [low, high] (the model fitted there) from the
+// physics of a breaking solid rather than from the noise itself: each break drops the secant
+// stiffness k = F/x by one bond's share, F by x times it and E_e by x²/2 times it, and the number of
+// breaks in a step is Poisson, so F's step² ∝ x² s(x) and E_e's ∝ x⁴ s(x), with s = −dk/dx read
+// from the curve (k averaged over a sixteenth of the span on each side, 3 to 200 samples). Relative
+// to its mean over the span (mean square 1), floored at 1 % of it. A curve whose noise a walk does
+// not dominate, or whose stiffness never falls, keeps an empty profile (the same step everywhere).
+// `strain` is the uniform grid of `force`, from strain 0 (k needs the strain itself).
+void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
                        std::size_t low, std::size_t high);
 
 // Adds one draw of the model's noise to `force` and `energy` (same length), from a generator
