@@ -446,7 +446,7 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
     EXPECT_EQ(shapes.size(), 6u) << set.name;
     for (const auto& s : shapes) EXPECT_TRUE(seen.insert(s.name).second) << set.name << ": " << s.name;
   }
-  EXPECT_TRUE(calibration_set("held-out-14").empty());
+  EXPECT_TRUE(calibration_set("held-out-15").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 

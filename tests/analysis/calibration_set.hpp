@@ -214,6 +214,16 @@ inline std::vector<Shape> thirteenth_held_out_shapes() {
           gamma_shape(5.5),    weibull_mixture("weibull mixture k=5 35/65 x1.5", 0.35, 5.0, 1.5, 2.3)};
 }
 
+// A fourteenth held-out set, fixed after held-out 13 missed its rule by 0.2 % and before the
+// random-walk factors learned on the tuning set and held-out 13 pooled were checked anywhere
+// (bench/analysis_calibration held-out-14 ... bundle walk-profile; the rule in docs/analysis.md). Its
+// uniform law has a = 0.08 b < 0.211 b.
+inline std::vector<Shape> fourteenth_held_out_shapes() {
+  return {weibull(2.6),       power_law(5.5),
+          uniform(0.04, 0.5), log_normal(0.48),
+          gamma_shape(4.0),   weibull_mixture("weibull mixture k=4.2 55/45 x1.35", 0.55, 4.2, 1.35, 2.1)};
+}
+
 // The nine shapes of the calibration table.
 inline std::vector<Shape> shapes() {
   return {weibull(2),    weibull(3),        weibull(5),      power_law(-0.5),  power_law(3),
@@ -302,14 +312,15 @@ struct NamedSet {
   std::vector<Shape> (*shapes)();
 };
 inline constexpr NamedSet later_held_out_sets[] = {
-    {"held-out-2", second_held_out_shapes},   {"held-out-3", third_held_out_shapes},
-    {"held-out-4", fourth_held_out_shapes},   {"held-out-5", fifth_held_out_shapes},
-    {"held-out-6", sixth_held_out_shapes},    {"held-out-7", seventh_held_out_shapes},
-    {"held-out-8", eighth_held_out_shapes},   {"held-out-9", ninth_held_out_shapes},
-    {"held-out-10", tenth_held_out_shapes},   {"held-out-11", eleventh_held_out_shapes},
-    {"held-out-12", twelfth_held_out_shapes}, {"held-out-13", thirteenth_held_out_shapes}};
+    {"held-out-2", second_held_out_shapes},     {"held-out-3", third_held_out_shapes},
+    {"held-out-4", fourth_held_out_shapes},     {"held-out-5", fifth_held_out_shapes},
+    {"held-out-6", sixth_held_out_shapes},      {"held-out-7", seventh_held_out_shapes},
+    {"held-out-8", eighth_held_out_shapes},     {"held-out-9", ninth_held_out_shapes},
+    {"held-out-10", tenth_held_out_shapes},     {"held-out-11", eleventh_held_out_shapes},
+    {"held-out-12", twelfth_held_out_shapes},   {"held-out-13", thirteenth_held_out_shapes},
+    {"held-out-14", fourteenth_held_out_shapes}};
 
-// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-13,
+// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-14,
 // all); empty for any other name.
 inline std::vector<Shape> calibration_set(const std::string& name) {
   for (const auto& set : later_held_out_sets)
