@@ -221,7 +221,7 @@ inline std::vector<Shape> thirteenth_held_out_shapes() {
 inline std::vector<Shape> fourteenth_held_out_shapes() {
   return {weibull(2.6),       power_law(5.5),
           uniform(0.04, 0.5), log_normal(0.48),
-          gamma_shape(4.0),   weibull_mixture("weibull mixture k=4.2 55/45 x1.35", 0.55, 4.2, 1.35, 2.1)};
+          gamma_shape(3.8),   weibull_mixture("weibull mixture k=4.2 55/45 x1.35", 0.55, 4.2, 1.35, 2.1)};
 }
 
 // The nine shapes of the calibration table.
