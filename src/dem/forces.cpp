@@ -16,13 +16,11 @@ namespace {
 // half-kick in one sweep over the particles; split, the compiler no longer keeps the sums in
 // registers across the parts.
 template <bool damped>
-void force_pass_impl(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
-                     const NeighbourList& neighbours, BreakLedger& breaks, const Params& params,
-                     bool parallel) {
+void force_sweep_impl(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
+                      const NeighbourList& neighbours, BreakLedger& breaks, const Params& params) {
   HotParticles& p = particles.hot;
   ColdParticles& cold = particles.cold;
   const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
-  breaks.prepare(omp_get_max_threads());
   const double kc = params.contact_stiffness;
   const GlueSpring glue{params.glue_mode == GlueMode::spring ? params.glue_stiffness : 0.0};
   const bool rigid = params.glue_mode == GlueMode::rigid;
@@ -39,7 +37,6 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
   const std::uint32_t* __restrict nb_start = neighbours.start.data();
   const std::uint32_t* __restrict nb_count = neighbours.count.data();
   const std::uint32_t* __restrict nb = neighbours.list.data();
-#pragma omp parallel if (parallel)
   {
     auto& flags = breaks.flagged[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static)
@@ -107,12 +104,19 @@ void force_pass_impl(const StepContext& step, ParticleStore& particles, const Bo
 
 }  // namespace
 
+void force_sweep(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
+                 const NeighbourList& neighbours, BreakLedger& breaks, const Params& params) {
+  if (params.damping > 0.0)
+    force_sweep_impl<true>(step, particles, bonds, neighbours, breaks, params);
+  else
+    force_sweep_impl<false>(step, particles, bonds, neighbours, breaks, params);
+}
+
 void force_pass(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
                 const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel) {
-  if (params.damping > 0.0)
-    force_pass_impl<true>(step, particles, bonds, neighbours, breaks, params, parallel);
-  else
-    force_pass_impl<false>(step, particles, bonds, neighbours, breaks, params, parallel);
+  breaks.prepare(omp_get_max_threads());
+#pragma omp parallel if (parallel)
+  force_sweep(step, particles, bonds, neighbours, breaks, params);
 }
 
 }  // namespace rupture::dem

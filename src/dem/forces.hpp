@@ -13,7 +13,12 @@
 
 namespace rupture::dem {
 
+// The pass in a parallel region of its own.
 void force_pass(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
                 const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel);
+// The pass's loop, called by every thread of the caller's parallel region (the step's, dem/system),
+// after breaks.prepare(omp_get_max_threads()); the threads are synchronised when it returns.
+void force_sweep(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
+                 const NeighbourList& neighbours, BreakLedger& breaks, const Params& params);
 
 }  // namespace rupture::dem

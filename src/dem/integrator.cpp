@@ -1,5 +1,7 @@
 #include "dem/integrator.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,45 +10,29 @@ namespace rupture::dem {
 
 namespace {
 
-// The farthest mover of a step: larger (|dt v| / r)^2 wins, ties go to the lower storage index, so
-// the result is the same for any split of the loop over threads.
-struct MoveMax {
-  double move2;
-  std::uint32_t index;
-};
-inline MoveMax farther(const MoveMax& a, const MoveMax& b) {
-  return (a.move2 > b.move2 || (a.move2 == b.move2 && a.index < b.index)) ? a : b;
-}
-#pragma omp declare reduction(farther:MoveMax                       \
-                              : omp_out = farther(omp_out, omp_in)) \
-    initializer(omp_priv = MoveMax{-1.0, 0xffffffffu})
-
-// The two largest squared displacements since the list build (a max: the same for any split).
-struct TopTwo {
-  double first = 0.0, second = 0.0;
-  void add(double d2) {
-    if (d2 > first) {
-      second = first;
-      first = d2;
-    } else if (d2 > second) {
-      second = d2;
-    }
+// The two largest squared displacements since the list build, and the farthest mover of the step
+// (larger (|dt v| / r)^2 wins, ties go to the lower storage index): maxima, so the merge of the
+// threads' shares is the same for any split of the loop.
+void add_move(DriftShare& share, double d2) {
+  if (d2 > share.first) {
+    share.second = share.first;
+    share.first = d2;
+  } else if (d2 > share.second) {
+    share.second = d2;
   }
-};
-inline TopTwo merged(TopTwo a, const TopTwo& b) {
-  a.add(b.first);
-  a.add(b.second);
-  return a;
 }
-#pragma omp declare reduction(top_two:TopTwo \
-                              : omp_out = merged(omp_out, omp_in)) initializer(omp_priv = TopTwo{})
+void add_mover(DriftShare& share, double move2, std::uint32_t index) {
+  if (move2 > share.move2 || (move2 == share.move2 && index < share.mover)) {
+    share.move2 = move2;
+    share.mover = index;
+  }
+}
 
 template <bool damped>
-DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, const NeighbourList& list,
-                            const Params& params, bool parallel) {
+DriftShare kick_drift_share(const StepContext& step, ParticleStore& particles, const NeighbourList& list,
+                            const Params& params, std::uint32_t begin, std::uint32_t end) {
   HotParticles& p = particles.hot;
   ColdParticles& cold = particles.cold;
-  const std::uint32_t n = static_cast<std::uint32_t>(p.x.size());
   const double dt = step.dt, half = step.half_dt, damping = params.damping;
   const bool rigid = params.glue_mode == GlueMode::rigid;
   // Unaliased views: through the vectors the compiler must assume that every store may change every
@@ -68,10 +54,8 @@ DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, c
   const double* __restrict xb = list.xb.data();
   const double* __restrict yb = list.yb.data();
   const double* __restrict zb = list.zb.data();
-  TopTwo moved;
-  MoveMax mover{-1.0, 0xffffffffu};
-#pragma omp parallel for schedule(static) reduction(top_two : moved) reduction(farther : mover) if (parallel)
-  for (std::uint32_t a = 0; a < n; ++a) {
+  DriftShare share;
+  for (std::uint32_t a = begin; a < end; ++a) {
     double px, py, pz;
     if (rigid && plate[a] != plate_none) {
       px = cold.ax[a];
@@ -93,7 +77,7 @@ DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, c
       const double v2 = ux * ux + uy * uy + uz * uz;
       double move2 = dt * dt * v2 / (radius[a] * radius[a]);
       if (!(move2 <= std::numeric_limits<double>::max())) move2 = std::numeric_limits<double>::infinity();
-      mover = farther(mover, MoveMax{move2, a});
+      add_mover(share, move2, a);
     }
     x[a] = px;
     y[a] = py;
@@ -102,18 +86,32 @@ DriftResult kick_drift_impl(const StepContext& step, ParticleStore& particles, c
     const double d2 = dx * dx + dy * dy + dz * dz;
     // A non-finite position counts as an infinite move (the list must be rebuilt; the step's
     // stability check then reports the state).
-    moved.add(d2 <= std::numeric_limits<double>::max() ? d2 : std::numeric_limits<double>::infinity());
+    add_move(share, d2 <= std::numeric_limits<double>::max() ? d2 : std::numeric_limits<double>::infinity());
   }
-  return {std::sqrt(moved.first), std::sqrt(moved.second), std::max(mover.move2, 0.0),
-          mover.index == 0xffffffffu ? 0u : mover.index};
+  return share;
 }
 
 }  // namespace
 
 DriftResult kick_drift(const StepContext& step, ParticleStore& particles, const NeighbourList& neighbours,
-                       const Params& params, bool parallel) {
-  return params.damping > 0.0 ? kick_drift_impl<true>(step, particles, neighbours, params, parallel)
-                              : kick_drift_impl<false>(step, particles, neighbours, params, parallel);
+                       const Params& params, std::vector<DriftShare>& shares) {
+  const auto n = static_cast<std::uint64_t>(particles.hot.x.size());
+  const auto thread = static_cast<std::uint64_t>(omp_get_thread_num()),
+             threads = static_cast<std::uint64_t>(omp_get_num_threads());
+  const auto begin = static_cast<std::uint32_t>(n * thread / threads),
+             end = static_cast<std::uint32_t>(n * (thread + 1) / threads);
+  shares[thread] = params.damping > 0.0
+                       ? kick_drift_share<true>(step, particles, neighbours, params, begin, end)
+                       : kick_drift_share<false>(step, particles, neighbours, params, begin, end);
+#pragma omp barrier
+  DriftShare all;
+  for (std::uint64_t t = 0; t < threads; ++t) {
+    add_move(all, shares[t].first);
+    add_move(all, shares[t].second);
+    add_mover(all, shares[t].move2, shares[t].mover);
+  }
+  return {std::sqrt(all.first), std::sqrt(all.second), std::max(all.move2, 0.0),
+          all.mover == 0xffffffffu ? 0u : all.mover};
 }
 
 }  // namespace rupture::dem

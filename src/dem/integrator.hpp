@@ -1,11 +1,13 @@
 // dem/integrator: velocity Verlet. The half-kick (with viscous damping and its energy), and the
 // first half of a step: half-kick, drift and the glued particles' rigid motion, which also measures
-// how far particles moved since the neighbour list was built and this step's largest move.
+// how far particles moved since the neighbour list was built and this step's largest move. It runs
+// inside the step's one parallel region (dem/system), before the force pass.
 // The second half-kick is fused into the force pass (dem/forces), which calls half_kick below.
 // Owns: the integration formulas. Not: forces.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "dem/neighbours.hpp"
 #include "dem/particles.hpp"
@@ -41,8 +43,18 @@ struct DriftResult {
   std::uint32_t mover = 0;    // storage index reaching it
 };
 
+// One thread's share of a DriftResult: squared moves, merged by kick_drift.
+struct DriftShare {
+  double first = 0.0, second = 0.0;  // mm^2: two largest squared moves since the list build
+  double move2 = -1.0;               // largest (|dt v| / r)^2 of this step
+  std::uint32_t mover = 0xffffffffu;
+};
+
 // First half-kick and drift to the step's end; glued particles in rigid mode follow their plate.
+// Called by every thread of the enclosing parallel region (or outside one): each sweeps its static
+// share of the particles into shares[thread], and after a barrier each merges all shares, so every
+// thread returns the same result, whatever the split. `shares` has a slot per thread.
 DriftResult kick_drift(const StepContext& step, ParticleStore& particles, const NeighbourList& neighbours,
-                       const Params& params, bool parallel);
+                       const Params& params, std::vector<DriftShare>& shares);
 
 }  // namespace rupture::dem

@@ -22,6 +22,7 @@
 #include "dem/breaks.hpp"
 #include "dem/energy.hpp"
 #include "dem/engine_state.hpp"
+#include "dem/integrator.hpp"
 #include "dem/neighbours.hpp"
 #include "dem/params.hpp"
 #include "dem/particles.hpp"
@@ -127,6 +128,7 @@ class System {
   BondStore bonds_;
   NeighbourList neighbours_;
   BreakLedger breaks_;
+  std::vector<DriftShare> drift_shares_;  // one per thread of the step's parallel region
   EnergyLedger ledger_;
   StabilityBound stability_;
   PlateMotion top_;
