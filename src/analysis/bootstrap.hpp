@@ -88,9 +88,10 @@ using PeakMeasure =
 struct BootstrapOptions {
   int replicates = 200;
   std::uint64_t seed = 1;
-  // Random-walk steps that follow the curve (add_walk_profiles). On the tuning set it brought the
-  // random-walk intervals to nominal; held-out 12 failed its rule (64.7 % / 97.1 % with the factors
-  // learned, N = 10^6 short at 68 %), so it is off (docs/analysis.md, "The walk's steps").
+  // Random-walk steps that follow the curve's breaks (add_walk_profiles). The step at x_p is right
+  // (0.94-0.96 of a bundle's true step), but held-out 13 and 14 failed their rules (73.2 % and 61.8 %
+  // at 68 %: the shape of the law still moves the coverage), so it is off (docs/analysis.md, "The
+  // walk's steps from the falling stiffness").
   bool walk_profile = false;
 };
 
