@@ -24,7 +24,7 @@ namespace {
 std::vector<Shape> swept_shapes() {
   std::vector<Shape> chosen;
   for (auto& s : shapes()) chosen.push_back(s);  // the tuning set and the first held-out set
-  for (auto& s : fourth_held_out_shapes())
+  for (auto& s : calibration_set("held-out-4"))
     if (s.name.rfind("uniform", 0) != 0) chosen.push_back(s);
   return chosen;
 }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <map>
 #include <set>
 #include <string>
 
@@ -401,7 +402,7 @@ TEST(NoiseModel, WalkProfileFollowsABundlesBreaks) {
 // 8). The whole-curve expectation pins that known limit: a fix of it changes this test.
 TEST(NoiseModel, QuartersOfASharplyPeakedBundleReadAsARandomWalk) {
   using namespace calibration;
-  const auto set = seventh_held_out_shapes();
+  const auto set = calibration_set("held-out-7");
   const auto bundle = CalibrationCase::at(set, 1);
   ASSERT_EQ(bundle.shape.name, "powerlaw alpha=4");
   const Curve c = bundle.draw({"bundle N=1e5", 0, 100000});
@@ -433,27 +434,31 @@ TEST(NoiseModel, MixedNoiseGroupAddsWhiteNoiseToTheForceAlone) {
   EXPECT_NEAR(model.force.white / truth(curve_case.shape).F_c, mixed.force_white, 0.2 * mixed.force_white);
 }
 
-// The sets bench/analysis_calibration runs by name: every held-out set has its six shapes, and none
-// shares a shape with the tuning set or with another set (a held-out set that repeats a shape checks
-// nothing new); an unknown name gives no set.
+// The sets bench/analysis_calibration runs by name: every held-out row has its six shapes, a name
+// gives all its rows, and no shape is shared with the tuning set or another row (a held-out set that
+// repeats a shape checks nothing new); an unknown name gives no set.
 TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   using namespace calibration;
   std::set<std::string> seen;
   for (const auto& s : calibration_set("all")) EXPECT_TRUE(seen.insert(s.name).second) << s.name;
   EXPECT_EQ(calibration_set("tuning").size() + calibration_set("held-out").size(), seen.size());
+  std::map<std::string, std::size_t> rows_of;
   for (const auto& set : later_held_out_sets) {
-    const auto shapes = calibration_set(set.name);
+    const auto shapes = set.shapes();
     EXPECT_EQ(shapes.size(), 6u) << set.name;
+    ++rows_of[set.name];
     for (const auto& s : shapes) EXPECT_TRUE(seen.insert(s.name).second) << set.name << ": " << s.name;
   }
-  EXPECT_TRUE(calibration_set("held-out-15").empty());
+  for (const auto& [name, rows] : rows_of) EXPECT_EQ(calibration_set(name).size(), 6 * rows) << name;
+  EXPECT_EQ(calibration_set("held-out-15").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-16").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
 // A span too short for four quarters of the structure function's longest lag is not read by quarters.
 TEST(NoiseModel, SpansTooShortForQuartersAreNotVoted) {
   using namespace calibration;
-  const Curve c = CalibrationCase::at(seventh_held_out_shapes(), 1).draw({"bundle N=1e5", 0, 100000});
+  const Curve c = CalibrationCase::at(calibration_set("held-out-7"), 1).draw({"bundle N=1e5", 0, 100000});
   ASSERT_GE(walk_dominated_quarters(c.force, c.energy, 0, c.force.size() - 1), 2);
   EXPECT_EQ(walk_dominated_quarters(c.force, c.energy, 100, 100 + 4 * 33 - 2), 0);
   EXPECT_EQ(walk_dominated_quarters(c.force, c.energy, 200, 100), 0);
