@@ -58,8 +58,9 @@ int main(int argc, char** argv) {
                    argv[3]);
       return 2;
     }
-    per_curve << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
-                 "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias\n";
+    per_curve
+        << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
+           "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias\n";
     per_curve.precision(10);
   }
   AnalysisOptions
