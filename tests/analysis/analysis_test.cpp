@@ -469,8 +469,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
     for (const auto& s : shapes) EXPECT_TRUE(seen.insert(s.name).second) << set.name << ": " << s.name;
   }
   for (const auto& [name, rows] : rows_of) EXPECT_EQ(calibration_set(name).size(), 6 * rows) << name;
-  EXPECT_EQ(calibration_set("held-out-15").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-16").empty());
+  EXPECT_EQ(calibration_set("held-out-16").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-17").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
