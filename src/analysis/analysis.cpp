@@ -490,7 +490,7 @@ void cap_smoothing_by_rise_to_peak(std::span<const double> force, double share, 
 // The noise model that decides step 2's kind of noise, read on the whole record. Where the whole
 // record's fit finds neither white noise nor a walk in either curve, it has taken all for the
 // curve's own curvature; on a noisy curve that is wrong (held-out 15's broad log-normal bundles at
-// 5,000 rows, recorded to six times x_c, were then read as white and barely smoothed;
+// 5,000 rows, recorded to about seven times x_c, were then read as white and barely smoothed;
 // docs/analysis.md). The loading part, up to twice the raw force maximum, is then read instead; a
 // curve without noise stays without.
 NoiseModel noise_for_kind(const Grid& g) {
