@@ -660,7 +660,8 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   DelayPosterior delay;
   if (options.delay_method == DelayMethod::fitted_maxima) {
     if (options.calibrated_intervals)
-      r.interval_scales = delta_interval_scales.for_noise(reads_random_walk(r));
+      r.interval_scales =
+          delta_interval_scales.for_noise(reads_random_walk(r), options.uncertainty.walk_profile);
     delay = delay_from_replicates(
         direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
         r.interval_scales);
@@ -764,9 +765,12 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   record_peaks(measurement, g, r);
   check_peaks(g, measurement.phase_end + 1, options.acceptance, r);  // 5
   // 6–7. A parametric bootstrap of the measurement (bootstrap.hpp) over the span of the three fits,
-  // padded, gives every number's uncertainty and δ_x's.
-  if (const auto run =
-          bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, options.uncertainty)) {
+  // padded, gives every number's uncertainty and δ_x's. The walk's step profile serves the curves
+  // read as a random walk, whose interval factors were learned with it; a curve read as white keeps
+  // the stationary steps its white factors were learned with (docs/analysis.md, "Rule 4").
+  BootstrapOptions uncertainty = options.uncertainty;
+  uncertainty.walk_profile = uncertainty.walk_profile && reads_random_walk(r);
+  if (const auto run = bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, uncertainty)) {
     const auto direct = record_intervals(g, *run, search, options.derivative_window, r);
     estimate_delay(g, *run, direct, options, r);
   }
@@ -852,8 +856,9 @@ nlohmann::json delay_json(const AnalysisResult& r) {
   if (r.delay_method == DelayMethod::fitted_maxima) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
-        "level's half-widths scaled by interval_scales (calibrated for white noise; 1, the bootstrap's own, "
-        "on a random walk: docs/analysis.md)";
+        "level's half-widths scaled by interval_scales (calibrated per kind of noise; 1, the bootstrap's "
+        "own, "
+        "on a random walk with a stationary step: docs/analysis.md, Calibration)";
     delta["interval_scales"] = {
         {"noise", noise_kind(r)}, {"ci68", r.interval_scales.level68}, {"ci95", r.interval_scales.level95}};
     delta["bias"] = r.delta_x_bias;

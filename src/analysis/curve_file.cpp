@@ -39,6 +39,7 @@ nlohmann::json inputs_json(const CurveFileInputs& in, const std::string& breaks_
           {"delay_method", to_string(a.delay_method)},
           {"replicates", a.uncertainty.replicates},
           {"bootstrap_seed", a.uncertainty.seed},
+          {"walk_profile", a.uncertainty.walk_profile},
           {"delay_window_drop", a.delay.window_drop},
           {"grid_points", a.delay.grid_points}};
 }

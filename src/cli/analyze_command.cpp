@@ -153,6 +153,9 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
                   "Noise replicates of the bootstrap that gives every uncertainty")
       ->check(CLI::Range(20, 100000));
   cmd->add_option("--seed", o->analysis.uncertainty.seed, "Seed of the bootstrap's noise replicates");
+  cmd->add_flag("--walk-profile,!--no-walk-profile", o->analysis.uncertainty.walk_profile,
+                "Random-walk noise: bootstrap steps that follow the curve's breaks (default; calibrated) "
+                "or one stationary step (the bootstrap's own intervals, conservative)");
   cmd->add_option("--delay-window", o->analysis.delay.window_drop,
                   "shift-l1: delta_x misfit over F >= (1 - this) F_c")
       ->check(CLI::Range(0.01, 0.9));

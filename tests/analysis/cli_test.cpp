@@ -300,6 +300,37 @@ TEST(AnalyzeCli, FbmSimulateOutputEndToEnd) {
   }
 }
 
+// A finite bundle's noise is a random walk: by default the bootstrap's steps follow the curve's
+// breaks and the intervals carry that profile's factors; --no-walk-profile takes one stationary step
+// and the bootstrap's own intervals. Both choices are written to analysis.json.
+TEST(AnalyzeCli, WalkProfileIsTheDefaultOnRandomWalkNoiseAndCanBeTurnedOff) {
+  TempDir dir;
+  const auto curve = dir / "bundle.csv";
+  ASSERT_EQ(
+      run_rupture("fbm simulate --dist uniform --fibers 100000 --seed 7 --out " + quoted(curve)).exit_code,
+      0);
+  const auto analysed = [&](const std::string& switches, const std::string& name) {
+    const auto r = run_rupture("analyze " + quoted(curve) + switches + " -o " + quoted(dir / name));
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    return nlohmann::json::parse(slurp(dir / name));
+  };
+  const auto profiled = analysed("", "profiled.json");
+  const auto stationary = analysed(" --no-walk-profile", "stationary.json");
+  EXPECT_TRUE(profiled["inputs"]["walk_profile"].get<bool>());
+  EXPECT_FALSE(stationary["inputs"]["walk_profile"].get<bool>());
+  for (const auto* j : {&profiled, &stationary})
+    EXPECT_EQ((*j)["delta_x"]["interval_scales"]["noise"], "random walk");
+  EXPECT_EQ(profiled["delta_x"]["interval_scales"]["ci68"].get<double>(),
+            delta_interval_scales.random_walk_profile.level68);
+  EXPECT_EQ(profiled["delta_x"]["interval_scales"]["ci95"].get<double>(),
+            delta_interval_scales.random_walk_profile.level95);
+  EXPECT_EQ(stationary["delta_x"]["interval_scales"]["ci95"].get<double>(), 1.0);
+  // The fitted maxima are the same; the estimate moves only by the bootstrap's bias correction.
+  EXPECT_NEAR(profiled["delta_x"]["value"].get<double>(), stationary["delta_x"]["value"].get<double>(),
+              0.5 * stationary["delta_x"]["error"].get<double>());
+  EXPECT_NE(profiled["delta_x"]["error"], stationary["delta_x"]["error"]);
+}
+
 }  // namespace
 // A LAMMPS fix ave/time file (whitespace columns, header in the last '#' line, no units): analysed
 // with the columns named, and a warning for each column that names no unit.
