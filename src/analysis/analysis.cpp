@@ -625,8 +625,9 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.bootstrap_window_high = g.xs[run.high];
   r.bootstrap_replicates = boot.attempted;
   r.bootstrap_failed = boot.failed;
+  const BiasCorrection correction = reads_random_walk(r) ? BiasCorrection::none : BiasCorrection::half;
   const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
-    return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
+    return bootstrap_interval(estimate, replicate_values(boot.replicates, of), correction);
   };
   const auto shift =
       smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
@@ -650,6 +651,7 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
       add_systematic(interval(values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
                      shift.x_c - shift.x_p);
   r.delta_x_direct = measured(direct.estimate, direct.sd, r.strain_unit);
+  r.bootstrap_bias = {.x_c = x_c.bias, .x_p = x_p.bias, .delta_x = direct.bias};
   return direct;
 }
 
@@ -665,7 +667,6 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
     delay = delay_from_replicates(
         direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
         r.interval_scales);
-    r.delta_x_bias = direct.bias;
   } else {
     delay = infer_delay(g.curves.x0, g.curves.step, g.force(), r.filtered_force, r.energy_rate,
                         r.force_peak->index, options.delay);
@@ -861,7 +862,7 @@ nlohmann::json delay_json(const AnalysisResult& r) {
         "on a random walk with a stationary step: docs/analysis.md, Calibration)";
     delta["interval_scales"] = {
         {"noise", noise_kind(r)}, {"ci68", r.interval_scales.level68}, {"ci95", r.interval_scales.level95}};
-    delta["bias"] = r.delta_x_bias;
+    delta["bias"] = r.bootstrap_bias.delta_x;
     delta["sampling_distribution"] = density;
   } else {
     delta["model"] = "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)";

@@ -238,7 +238,8 @@ BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const d
   return result;
 }
 
-BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates) {
+BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates,
+                                     BiasCorrection correction) {
   BootstrapInterval s;
   s.estimate = estimate;
   if (replicates.size() < 2) {
@@ -253,10 +254,7 @@ BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replic
   const double spread = std::sqrt(squares / (n - 1.0));
   s.spread = spread;
   s.bias = mean - estimate;
-  // Half the bootstrap's bias estimate is subtracted and the other half counted as error: the
-  // replicates are smoothed twice (the data once, then again with their noise), so their shift
-  // over-states the smoothing bias of the data, and how much is not known (docs/analysis.md).
-  s.estimate = estimate - 0.5 * s.bias;
+  if (correction == BiasCorrection::half) s.estimate = estimate - 0.5 * s.bias;
   s.sd = std::hypot(spread, 0.5 * s.bias);
   const double widen = spread > 0.0 ? s.sd / spread : 1.0;
   const double median = quantile_sorted(replicates, 0.5);

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Draws a twelve-shape held-out set for the calibration (tests/analysis/calibration_set.hpp).
+
+Usage: draw_held_out.py SEED
+
+Prints two rows of `later_held_out_sets` named held-out-SEED: each parameter drawn with
+random.Random(SEED) within its family's range, rounded to two significant digits, drawn again where
+that value already names a shape of an earlier set (the test
+CalibrationSets.HeldOutSetsAreDisjointAndFoundByName checks the names). Uniform laws [a, b] have
+a = b * U(0.03, 0.2), so ℰ's maximum is inside (a < 0.211 b); a mixture is recorded to its strong
+part's 99.9 % quantile. Held-out 17 was drawn by this script;
+held-outs 15 and 16 by the same ranges in an earlier form.
+Standard library only.
+"""
+import math
+import random
+import sys
+
+# The parameters the tuning set and held-outs 1-16 already use (their shape names).
+USED = {
+    "weibull": {2, 3, 5, 1.5, 2.5, 4, 6, 3.5, 1.8, 2.2, 1.6, 2.8, 3.2, 2.4, 4.4, 2.6, 5.8, 4.7, 3.1, 2.1},
+    "alpha": {-0.5, 3, 10, 6, 1, 2, 5, 0.5, 4, 7, 8, 1.5, 2.5, 3.5, 4.5, 5.5, -0.38, 2.4, 3.9, 7.3},
+    "sigma": {0.3, 0.5, 0.2, 0.4, 0.6, 0.35, 0.25, 0.45, 0.55, 0.7, 0.38, 0.42, 0.32, 0.48, 0.59, 0.54,
+              0.46, 0.58},
+    "gamma": {4, 8, 2.5, 1.5, 3, 5, 6, 3.5, 2, 4.5, 7, 5.5, 3.8, 2.1, 7.2, 3.6, 7.4},
+}
+
+
+def two_digits(x):
+    return float(f"{x:.2g}")
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: draw_held_out.py SEED")
+    seed = int(sys.argv[1])
+    rng = random.Random(seed)
+
+    def draw(family, low, high):
+        while True:
+            value = two_digits(rng.uniform(low, high))
+            if family is None or value not in USED[family]:
+                if family:
+                    USED[family].add(value)
+                return value
+
+    for _ in range(2):
+        k = draw("weibull", 1.5, 6)
+        alpha = draw("alpha", -0.5, 10)
+        b = two_digits(rng.uniform(0.45, 1))
+        a = two_digits(b * rng.uniform(0.03, 0.2))
+        sigma = draw("sigma", 0.2, 0.6)
+        gamma = draw("gamma", 2, 8)
+        weak = two_digits(rng.uniform(0.3, 0.7))
+        mixture_k = two_digits(rng.uniform(3, 6))
+        scale = two_digits(rng.uniform(1.25, 1.6))
+        x_end = two_digits(scale * math.log(1000) ** (1 / mixture_k))
+        share = round(weak * 100)
+        name = f"weibull mixture k={mixture_k:g} {share}/{100 - share} x{scale:g}"
+        print(f'    {{"held-out-{seed}", {k:g}, {alpha:g}, {a:g}, {b:g}, {sigma:g}, {gamma:g}, '
+              f'{{"{name}", {weak:g}, {mixture_k:g}, {scale:g}, {x_end:g}}}}},')
+
+
+if __name__ == "__main__":
+    main()
