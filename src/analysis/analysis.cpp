@@ -625,9 +625,8 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.bootstrap_window_high = g.xs[run.high];
   r.bootstrap_replicates = boot.attempted;
   r.bootstrap_failed = boot.failed;
-  const BiasCorrection correction = reads_random_walk(r) ? BiasCorrection::none : BiasCorrection::half;
   const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
-    return bootstrap_interval(estimate, replicate_values(boot.replicates, of), correction);
+    return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
   };
   const auto shift =
       smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);

@@ -107,27 +107,18 @@ BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const d
                                 const NoiseModel& model, const PeakMeasure& measure,
                                 const BootstrapOptions& options);
 
-// What is done with the bootstrap's bias estimate b (the replicates' mean minus the data's value).
-// The replicates are smoothed twice (the data once, then again with their noise), so b over-states
-// the smoothing bias of the data by an unknown amount. Under white noise half of b is subtracted
-// (chosen on the tuning set among none, half and all). Under a random walk b has the wrong sign on
-// finite bundles (the replicates lie above the estimate, the estimate below the truth), and
-// subtracting half of it moves δ_x away from the truth (docs/analysis.md, "The bootstrap's bias on
-// a random walk"): there the estimate is the data's value. Half of b is counted as error either way.
-enum class BiasCorrection { half, none };
-
-// Summary of one bootstrapped quantity: the estimate (corrected as `correction` says), its sd (the
-// replicates' spread and half the bias, in quadrature), and equal-tailed 68 % and 95 % intervals
-// from the replicates' quantiles around their median (the basic bootstrap, which keeps a skewed
-// spread), placed on the estimate and widened by the same factor as the sd.
+// Summary of one bootstrapped quantity: the estimate corrected by half the bootstrap's bias
+// estimate, its sd (the replicates' spread and the other half of the bias, in quadrature), and
+// equal-tailed 68 % and 95 % intervals from the replicates' quantiles around their median (the
+// basic bootstrap, which keeps a skewed spread), placed on the estimate and widened by the same
+// factor as the sd.
 struct BootstrapInterval {
   double estimate = 0.0, sd = 0.0;
   double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;
   double bias = 0.0;    // mean of the replicates minus the uncorrected estimate
   double spread = 0.0;  // sd of the replicates
 };
-BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates,
-                                     BiasCorrection correction = BiasCorrection::half);
+BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates);
 
 // Adds a systematic error `shift` (strain units) to an interval: sd in quadrature, the intervals
 // widened about the estimate by the same factor (or, with no spread at all, ±shift and ±1.96 shift).
