@@ -1,4 +1,4 @@
-# rupture 0.1.0 (7660f46-dirty) plot small-absolute
+# rupture 0.1.0 (5ed5ff1) plot small-absolute
 # read: small-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -35,11 +35,11 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "delay_vs_critical.pdf"
   }
-  set title "Delay of failure behind the precursor (41 analysed points; 4 with δ_x ≤ 0 cannot be shown on log axes)"
+  set title "Delay of failure behind the precursor (44 analysed points; 4 with δ_x ≤ 0 cannot be shown on log axes)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.027182180377786996:62.89366026618375]
-  set yrange [0.0009060726792595666:62.89366026618375]
+  set xrange [0.027133881995990854:62.89366026618375]
+  set yrange [0.0009044627331996953:62.89366026618375]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (9b147a5-dirty) plot docs/study/small-relative
-# read: docs/study/small-relative/results.csv
+# rupture 0.1.0 (5ed5ff1) plot small-relative
+# read: small-relative/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,11 +35,11 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "delay_vs_critical.pdf"
   }
-  set title "Delay of failure behind the precursor (31 analysed points; 1 with δ_x ≤ 0 cannot be shown on log axes)"
+  set title "Delay of failure behind the precursor (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.02425351317705445:50.4169667012346]
-  set yrange [0.0008084504392351483:50.4169667012346]
+  set xrange [0.02425351317705445:108.97657690889493]
+  set yrange [0.00015639799875172074:108.97657690889493]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"
