@@ -857,8 +857,7 @@ nlohmann::json delay_json(const AnalysisResult& r) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
         "level's half-widths scaled by interval_scales (calibrated per kind of noise; 1, the bootstrap's "
-        "own, "
-        "on a random walk with a stationary step: docs/analysis.md, Calibration)";
+        "own, on a random walk with a stationary step: docs/analysis.md, Calibration)";
     delta["interval_scales"] = {
         {"noise", noise_kind(r)}, {"ci68", r.interval_scales.level68}, {"ci95", r.interval_scales.level95}};
     delta["bias"] = r.bootstrap_bias.delta_x;
