@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Learns the per-level scales of δ_x's intervals and checks them (docs/analysis.md, "Calibration").
+"""Learns the per-level scales of δ_x's intervals (or x_c's, x_p's) and checks them (docs/analysis.md,
+"Calibration").
 
-Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--use KIND=S68,S95 ...] [--skip-shape NAME ...]
-                          [--check CHECK.csv ...]
+Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p] [--use KIND=S68,S95 ...]
+                          [--skip-shape NAME ...] [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -16,6 +17,9 @@ the learned ones (what src/analysis/analysis.hpp applies where a learned factor 
 case outside the calibration's domain, documented on its own). As in the analysis, the 95 % interval
 is never inside the 68 % one: a curve counts as covered at
 95 % when either scaled interval reaches the truth.
+`--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
+about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
+(src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
 Standard library only, so it runs wherever the bench does.
 """
 import csv
@@ -26,7 +30,17 @@ from collections import OrderedDict
 LEVELS = (("68", 0.6826894921370859), ("95", 0.95))
 
 
+QUANTITY = "delta_x"  # set by --quantity
+HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
+
+
 def score(row, level):
+    if QUANTITY != "delta_x":
+        gap = abs(float(row[QUANTITY]) - float(row[QUANTITY + "_true"]))
+        reach = HALF_WIDTH_IN_SD[level] * float(row[QUANTITY + "_sd"])
+        if gap == 0.0:
+            return 0.0
+        return gap / reach if reach > 0.0 else math.inf
     truth, estimate = float(row["delta_x_true"]), float(row["delta_x"])
     low, high = float(row[f"ci{level}_low"]), float(row[f"ci{level}_high"])
     reach = high - estimate if truth >= estimate else estimate - low
@@ -93,8 +107,9 @@ def table(title, rows, scales):
     for row in rows:
         groups.setdefault(row["group"], []).append(row)
     print(f"\n{title}\n")
-    print("| group | curves | read as random walk | accepted | δ_x 68 % (scaled) | δ_x 95 % (scaled) | "
-          "δ_x 68 % (unscaled) | δ_x 95 % (unscaled) |")
+    q = "δ_x" if QUANTITY == "delta_x" else QUANTITY
+    print(f"| group | curves | read as random walk | accepted | {q} 68 % (scaled) | {q} 95 % (scaled) | "
+          f"{q} 68 % (unscaled) | {q} 95 % (unscaled) |")
     print("|---|---|---|---|---|---|---|---|")
     for name, members in list(groups.items()) + [("all", rows)]:
         accepted = [r for r in members if r["accepted"] == "1"]
@@ -141,6 +156,7 @@ def verdict(rows, scales):
 
 
 def main(argv):
+    global QUANTITY
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -149,7 +165,11 @@ def main(argv):
     learn, given, skipped = [], {}, set()
     args = iter(argv)
     for arg in args:
-        if arg == "--use":
+        if arg == "--quantity":
+            QUANTITY = next(args, "")
+            if QUANTITY not in ("delta_x", "x_c", "x_p"):
+                sys.exit(f"interval_scales.py: --quantity '{QUANTITY}': name delta_x, x_c or x_p")
+        elif arg == "--use":
             kind, by_level = parse_use(next(args, ""))
             given[kind] = by_level
         elif arg == "--skip-shape":
@@ -168,7 +188,7 @@ def main(argv):
         sys.exit(f"interval_scales.py: --skip-shape '{name}': no curve of that shape in the files; "
                  "give the name as their `shape` column writes it")
     scales = learn_scales(learning)
-    print(f"learned on {', '.join(learn)}:")
+    print(f"{QUANTITY}'s scales learned on {', '.join(learn)}:")
     for kind, by_level in scales.items():
         n = sum(r["noise"] == kind and r["accepted"] == "1" for r in learning)
         print(f"  {kind} noise ({n} accepted curves): scale 68 % = {by_level['68']:.4f}, "

@@ -197,8 +197,23 @@ struct PeakSearch {
 struct PeakMeasurement {
   std::vector<double> filtered_force, filtered_energy, energy_rate;
   PeakFit force, energy, rate;
-  std::size_t phase_end = 0;  // last sample of the loading phase
+  double force_fit_error = 0.0, rate_fit_error = 0.0;  // fit_window_error of x_c and x_p
+  std::size_t phase_end = 0;                           // last sample of the loading phase
 };
+
+// The cubic fit's own error at a maximum: a cubic over a peak that is not one leaves its stationary
+// point off the true maximum by an amount that grows as the window's drop squared (measured on the
+// exact curves of 26 shapes at 300-5000 rows, docs/analysis.md, "The peak fits' own error"). Halving
+// the drop removes three quarters of it, so 4/3 of the shift between the two fits estimates it
+// (Richardson); 0 where the narrower fit fails.
+double fit_window_error(std::span<const double> x, std::span<const double> y, const PeakFit& fit,
+                        const PeakFitOptions& options) {
+  if (!fit.found) return 0.0;
+  PeakFitOptions narrower = options;
+  narrower.drop *= 0.5;
+  const PeakFit narrow = fit_peak(x, y, 0.0, 1.0, narrower);
+  return narrow.found ? (4.0 / 3.0) * (fit.x - narrow.x) : 0.0;
+}
 
 // The loading phase ends where the filtered force, after its maximum, first falls below
 // `collapse_fraction` of it: after that the sample has come apart, and what E_e and ℰ do (the
@@ -229,6 +244,7 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
     return y.subspan(first, end - first + 1);
   };
   m.force = fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak);
+  m.force_fit_error = fit_window_error(inner(xs, last), inner(m.filtered_force, last), m.force, search.peak);
   m.force.index += first;
   m.phase_end = std::min(last, loading_phase_end(m.filtered_force, m.force.index, search.collapse_fraction));
   // E_e often peaks right at the collapse: its fit may reach min_side samples past the phase.
@@ -240,9 +256,10 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   const std::size_t rate_first = std::max(first, std::min(half, m.phase_end));
   const std::size_t rate_end =
       std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
-  m.rate = fit_peak(xs.subspan(rate_first, rate_end - rate_first + 1),
-                    std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1),
-                    0.0, 1.0, search.peak);
+  const auto rate_xs = xs.subspan(rate_first, rate_end - rate_first + 1);
+  const auto rate_ys = std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1);
+  m.rate = fit_peak(rate_xs, rate_ys, 0.0, 1.0, search.peak);
+  m.rate_fit_error = fit_window_error(rate_xs, rate_ys, m.rate, search.peak);
   m.energy.index += first;
   m.rate.index += rate_first;
   return m;
@@ -258,7 +275,9 @@ std::optional<PeakValues> peak_values(const PeakMeasurement& m, bool want_energy
                     m.rate.x,
                     m.rate.value,
                     want_energy_peak ? m.energy.x : nan,
-                    want_energy_peak ? m.energy.value : nan};
+                    want_energy_peak ? m.energy.value : nan,
+                    m.force_fit_error,
+                    m.rate_fit_error};
 }
 
 // First row whose strain is below the one before: a curve that unloads and reloads is no single
@@ -630,9 +649,23 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   };
   const auto shift =
       smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
-  const auto x_c = add_systematic(interval(values.x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c);
+  // The fit's own error estimated on the data carries the data's noise too; the replicates' spread
+  // of the same estimate is that noise's share, taken out in quadrature (0 where it explains all).
+  const auto fit_error = [&](double on_data, double (*of)(const PeakValues&)) {
+    const double noise = interval(on_data, of).spread;
+    return std::sqrt(std::max(0.0, on_data * on_data - noise * noise));
+  };
+  r.smoothing_shift = {.x_c = shift.x_c, .x_p = shift.x_p};
+  r.peak_fit_error = {
+      .x_c = fit_error(values.x_c_fit_error, [](const PeakValues& v) { return v.x_c_fit_error; }),
+      .x_p = fit_error(values.x_p_fit_error, [](const PeakValues& v) { return v.x_p_fit_error; })};
+  const auto x_c = add_systematic(
+      add_systematic(interval(values.x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c),
+      r.peak_fit_error.x_c);
   const auto F_c = interval(values.F_c, [](const PeakValues& v) { return v.F_c; });
-  const auto x_p = add_systematic(interval(values.x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p);
+  const auto x_p = add_systematic(
+      add_systematic(interval(values.x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p),
+      r.peak_fit_error.x_p);
   const auto Erate = interval(values.Erate_max, [](const PeakValues& v) { return v.Erate_max; });
   r.x_c = measured(x_c.estimate, x_c.sd, r.strain_unit);
   r.F_c = measured(F_c.estimate, F_c.sd, r.force_unit);
@@ -654,15 +687,31 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   return direct;
 }
 
+// x_c's or x_p's calibrated intervals about the estimate (critical_strain_scales,
+// precursor_strain_scales); unscaled where the options ask for the bootstrap's own.
+// The 95 % interval is never inside the 68 % one, as for δ_x.
+StrainInterval strain_interval(const Measured& m, const IntervalScales& scales) {
+  const double half68 = scales.level68 * m.error, half95 = std::max(1.96 * scales.level95 * m.error, half68);
+  return {.ci68_low = m.value - half68,
+          .ci68_high = m.value + half68,
+          .ci95_low = m.value - half95,
+          .ci95_high = m.value + half95,
+          .scales = scales};
+}
+
 // 7. δ_x by the chosen method, then Γ and α, and the acceptance of the uncertainty.
 void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInterval& direct,
                     const AnalysisOptions& options, AnalysisResult& r) {
   const auto& boot = run.boot;
   DelayPosterior delay;
+  const bool walk = reads_random_walk(r), walk_profile = options.uncertainty.walk_profile;
+  const auto scales_of = [&](const NoiseIntervalScales& calibrated) {
+    return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : IntervalScales{1.0, 1.0};
+  };
+  r.x_c_interval = strain_interval(*r.x_c, scales_of(critical_strain_scales));
+  r.x_p_interval = strain_interval(*r.x_p, scales_of(precursor_strain_scales));
   if (options.delay_method == DelayMethod::fitted_maxima) {
-    if (options.calibrated_intervals)
-      r.interval_scales =
-          delta_interval_scales.for_noise(reads_random_walk(r), options.uncertainty.walk_profile);
+    r.interval_scales = scales_of(delta_interval_scales);
     delay = delay_from_replicates(
         direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
         r.interval_scales);
@@ -837,6 +886,18 @@ nlohmann::json filter_json(const AnalysisResult& r) {
   return filter;
 }
 
+// x_c or x_p: value and sd, with the calibrated intervals and their factors where the bootstrap ran.
+nlohmann::json strain_json(const std::optional<Measured>& m, const std::optional<StrainInterval>& interval,
+                           const AnalysisResult& r) {
+  nlohmann::json j = optional_json(m);
+  if (!m || !interval) return j;
+  j["ci68"] = {interval->ci68_low, interval->ci68_high};
+  j["ci95"] = {interval->ci95_low, interval->ci95_high};
+  j["interval_scales"] = {
+      {"noise", noise_kind(r)}, {"ci68", interval->scales.level68}, {"ci95", interval->scales.level95}};
+  return j;
+}
+
 // δ_x with its method, intervals and distribution (null when not estimated).
 nlohmann::json delay_json(const AnalysisResult& r) {
   if (!r.delay) return nullptr;
@@ -891,6 +952,18 @@ nlohmann::json uncertainty_json(const AnalysisResult& r) {
           {"replicates", r.bootstrap_replicates},
           {"failed_replicates", r.bootstrap_failed},
           {"window", io::quantity({r.bootstrap_window_low, r.bootstrap_window_high}, r.strain_unit)},
+          {"systematic",
+           {{"method",
+             "added to the sd of x_c and x_p in quadrature: the maxima's shift under a filter of cutoff x "
+             "sqrt(2), "
+             "and the cubic peak fits' own error (4/3 of the shift to a fit over half the drop) beyond its "
+             "noise"},
+            {"x_c",
+             {{"smoothing_shift", io::quantity(r.smoothing_shift.x_c, r.strain_unit)},
+              {"peak_fit", io::quantity(r.peak_fit_error.x_c, r.strain_unit)}}},
+            {"x_p",
+             {{"smoothing_shift", io::quantity(r.smoothing_shift.x_p, r.strain_unit)},
+              {"peak_fit", io::quantity(r.peak_fit_error.x_p, r.strain_unit)}}}}},
           {"noise",
            {{"force", noise_json(r.noise_model.force, r.force_unit)},
             {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
@@ -954,11 +1027,11 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["noise"] = {{"force", io::quantity(r.force_noise, r.force_unit)},
                 {"elastic_energy", io::quantity(r.energy_noise, r.energy_unit)},
                 {"estimator", "rms of third differences / sqrt(20), largest 0.5 % trimmed"}};
-  j["x_c"] = optional_json(r.x_c);
+  j["x_c"] = strain_json(r.x_c, r.x_c_interval, r);
   j["F_c"] = optional_json(r.F_c);
   j["x_m"] = optional_json(r.x_m);
   j["E_max"] = optional_json(r.E_max);
-  j["x_p"] = optional_json(r.x_p);
+  j["x_p"] = strain_json(r.x_p, r.x_p_interval, r);
   j["Erate_max"] = optional_json(r.Erate_max);
   j["peak_fits"] = {{"force", peak_json(r.force_peak, r.strain_unit)},
                     {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},

@@ -90,8 +90,8 @@ struct AnalysisOptions {
   // the curve's start to the filtered force's maximum; 0: no cap. 0.5 was chosen among 0.35, 0.5 and
   // 0.7 by δ_x's rms error (bench/smoothing_share_sweep; docs/analysis.md, "The smoothing cap").
   double random_walk_smoothing_share = 0.5;
-  // δ_x's intervals scaled by their factors (delta_interval_scales, below); false keeps the
-  // bootstrap's own, from which bench/interval_scales.py learns the factors.
+  // δ_x's, x_c's and x_p's intervals scaled by their factors (delta_interval_scales and the strain
+  // scales, below); false keeps the bootstrap's own, from which bench/interval_scales.py learns them.
   bool calibrated_intervals = true;
 };
 
@@ -113,15 +113,31 @@ struct AnalysisOptions {
 struct IntervalScales {
   double level68, level95;
 };
-struct DelayIntervalScales {
+struct NoiseIntervalScales {
   IntervalScales white_noise, random_walk, random_walk_profile;
   constexpr const IntervalScales& for_noise(bool random_walk_dominates, bool walk_profile) const {
     if (!random_walk_dominates) return white_noise;
     return walk_profile ? random_walk_profile : random_walk;
   }
 };
-inline constexpr DelayIntervalScales delta_interval_scales{
+inline constexpr NoiseIntervalScales delta_interval_scales{
     .white_noise = {0.7062, 0.8581}, .random_walk = {1.0, 1.0}, .random_walk_profile = {0.9744, 1.0973}};
+
+// x_c's and x_p's intervals: ± level68 sd (68 %) and ± 1.96 level95 sd (95 %) about the estimate,
+// where sd is the bootstrap's spread with the smoothing shift and the peak fit's own error in
+// quadrature. Learned on the tuning set (bench/interval_scales.py --quantity x_c, x_p) and checked
+// on held-out 18 by δ_x's rule (docs/analysis.md, "The strains' own intervals"). With a stationary
+// walk step, factor 1 as for δ_x.
+inline constexpr NoiseIntervalScales critical_strain_scales{
+    .white_noise = {0.5881, 0.8221}, .random_walk = {1.0, 1.0}, .random_walk_profile = {0.9682, 1.0308}};
+inline constexpr NoiseIntervalScales precursor_strain_scales{
+    .white_noise = {0.6957, 0.7793}, .random_walk = {1.0, 1.0}, .random_walk_profile = {0.9084, 0.9764}};
+
+// A strain's calibrated intervals (x_c, x_p) and the factors that made them.
+struct StrainInterval {
+  double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;
+  IntervalScales scales{1.0, 1.0};
+};
 
 // A measured number with its 1-sigma uncertainty (0 when not estimated) and unit.
 struct Measured {
@@ -156,6 +172,7 @@ struct AnalysisResult {
   double force_noise = 0.0, energy_noise = 0.0;               // σ̂ of the raw curves (third differences)
   std::optional<PeakFit> force_peak, energy_peak, rate_peak;  // x_c/F_c, x_m/E_max, x_p/ℰ_max
   std::optional<Measured> x_c, F_c, x_m, E_max, x_p, Erate_max;
+  std::optional<StrainInterval> x_c_interval, x_p_interval;  // where the bootstrap gave their sd
   double loading_phase_end = 0.0;  // strain where the loading phase ends (AcceptanceRules::collapse_fraction)
   DelayMethod delay_method = DelayMethod::fitted_maxima;
   // fitted_maxima: the replicates' sampling distribution centred on the estimate; shift_l1: the posterior.
@@ -167,6 +184,11 @@ struct AnalysisResult {
   struct {
     double x_c = 0.0, x_p = 0.0, delta_x = 0.0;
   } bootstrap_bias;
+  // The systematic errors added to x_c's and x_p's sd in quadrature (strain unit): the shift under a
+  // weaker filter, and the cubic peak fits' own error beyond what the noise puts into its estimate.
+  struct {
+    double x_c = 0.0, x_p = 0.0;
+  } smoothing_shift, peak_fit_error;
   NoiseModel noise_model;  // fitted in the bootstrap window
   double bootstrap_window_low = 0.0, bootstrap_window_high = 0.0;
   int bootstrap_replicates = 0, bootstrap_failed = 0;

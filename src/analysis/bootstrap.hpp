@@ -79,6 +79,9 @@ void add_model_noise(const NoiseModel& model, std::span<double> force, std::span
 // The numbers measured on one replicate.
 struct PeakValues {
   double x_c = 0.0, F_c = 0.0, x_p = 0.0, Erate_max = 0.0, x_m = 0.0, E_max = 0.0;
+  // The cubic fits' own error at x_c and x_p, estimated from a second fit over a narrower window
+  // (fit_window_error); 0 where that fit fails.
+  double x_c_fit_error = 0.0, x_p_fit_error = 0.0;
 };
 
 // Measures (force, energy), each with noise added; nullopt when a peak is not found.

@@ -49,9 +49,15 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   const auto line = [out](const char* name, const std::optional<analysis::Measured>& m) {
     fmt::print(out, "  {:<11} {}\n", name, m ? with_error(*m) : std::string("not found"));
   };
-  line("x_c", r.x_c);
+  const auto strain_line = [&](const char* name, const std::optional<analysis::Measured>& m,
+                               const std::optional<analysis::StrainInterval>& interval) {
+    if (!m || !interval) return line(name, m);
+    fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}])\n", name, with_error(*m), interval->ci95_low,
+               interval->ci95_high);
+  };
+  strain_line("x_c", r.x_c, r.x_c_interval);
   line("F_c", r.F_c);
-  line("x_p", r.x_p);
+  strain_line("x_p", r.x_p, r.x_p_interval);
   line("Erate_max", r.Erate_max);
   line("x_m", r.x_m);
   line("E_max", r.E_max);

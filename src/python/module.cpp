@@ -326,7 +326,7 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 // ---- analysis ----------------------------------------------------------------------------------
 
 analysis::AnalysisOptions analysis_options(const std::string& delay_method, std::size_t replicates,
-                                           std::uint64_t seed) {
+                                           std::uint64_t seed, bool walk_profile) {
   analysis::AnalysisOptions options;
   if (delay_method != "fitted-maxima" && delay_method != "shift-l1")
     throw InputError("delay_method", "'" + delay_method + "' is not a method",
@@ -335,13 +335,14 @@ analysis::AnalysisOptions analysis_options(const std::string& delay_method, std:
       delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
   if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
   options.uncertainty.seed = seed;
+  options.uncertainty.walk_profile = walk_profile;
   return options;
 }
 
 py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, std::vector<double> energy,
                         const std::string& strain_unit, const std::string& force_unit,
                         const std::string& energy_unit, const std::string& delay_method,
-                        std::size_t replicates, std::uint64_t seed) {
+                        std::size_t replicates, std::uint64_t seed, bool walk_profile) {
   if (strain.size() != force.size() || strain.size() != energy.size())
     throw InputError("analyze",
                      fmt::format("strain, force and energy have {}, {} and {} values", strain.size(),
@@ -358,7 +359,7 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   curve.strain_column = "strain";
   curve.force_column = "force";
   curve.energy_column = "elastic_energy";
-  const auto options = analysis_options(delay_method, replicates, seed);
+  const auto options = analysis_options(delay_method, replicates, seed, walk_profile);
   json document;
   {
     py::gil_scoped_release release;
@@ -369,10 +370,10 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
 }
 
 py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method,
-                      std::size_t replicates, std::uint64_t seed) {
+                      std::size_t replicates, std::uint64_t seed, bool walk_profile) {
   analysis::CurveFileInputs inputs;
   inputs.curves = curves;
-  inputs.options = analysis_options(delay_method, replicates, seed);
+  inputs.options = analysis_options(delay_method, replicates, seed, walk_profile);
   json document;
   {
     py::gil_scoped_release release;
@@ -471,7 +472,7 @@ PYBIND11_MODULE(_rupture, m) {
 
   m.def("analyze_arrays", &analyze_arrays, py::arg("strain"), py::arg("force"), py::arg("energy"),
         py::arg("strain_unit"), py::arg("force_unit"), py::arg("energy_unit"), py::arg("delay_method"),
-        py::arg("replicates"), py::arg("seed"));
+        py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"));
   m.def("analyze_file", &analyze_file, py::arg("curves"), py::arg("delay_method"), py::arg("replicates"),
-        py::arg("seed"));
+        py::arg("seed"), py::arg("walk_profile"));
 }

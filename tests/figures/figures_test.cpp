@@ -384,7 +384,7 @@ TEST(Figures, ScanFiguresFromResultsTable) {
       find_block(delay, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval");
   ASSERT_NE(points, nullptr);
   EXPECT_EQ(points->rows.size(), std::size_t(ScanFixture::positive_delay));
-  EXPECT_THAT(slurp(out / "delay_vs_critical.gp"), HasSubstr("1 with δ_x ≤ 0 cannot be shown on log axes"));
+  EXPECT_THAT(slurp(out / "delay_vs_critical.gp"), HasSubstr("1 with δ_x ≤ 0 not on log axes"));
   // Uniform thresholds (α = 0): x_c = 1/2, x_p = 1/3, so δ_x = x_c / 3 on the FBM line.
   const Block* line = find_block(delay, "FBM power law, alpha = 0");
   ASSERT_NE(line, nullptr);

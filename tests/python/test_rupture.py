@@ -204,6 +204,23 @@ def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
     assert rupture.analyze(study / "run" / "curves.csv").mechanism == expected["mechanism"]["class"]
 
 
+def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):
+    curve = tmp_path / "bundle.csv"
+    cli("fbm", "simulate", "--dist", "uniform", "--fibers", "100000", "--seed", "7", "--out", curve)
+    for walk_profile, switches in ((True, []), (False, ["--no-walk-profile"])):
+        out = tmp_path / f"analysis-{walk_profile}.json"
+        cli("analyze", curve, *switches, "-o", out)
+        expected = json.loads(out.read_text())
+        a = rupture.analyze(curve, walk_profile=walk_profile)
+        assert a.document["inputs"]["walk_profile"] is walk_profile
+        assert a.document["delta_x"]["interval_scales"]["noise"] == "random walk"
+        assert a.delta_x.error == expected["delta_x"]["error"]
+        assert a.delta_x_ci95 == tuple(expected["delta_x"]["ci95"])
+    # The switch reaches the bootstrap: the two sds differ.
+    assert (rupture.analyze(curve).delta_x.error
+            != rupture.analyze(curve, walk_profile=False).delta_x.error)
+
+
 def test_read_scan_and_the_examples(tmp_path):
     cli("scan", EXAMPLES / "scan-block.toml", "-o", tmp_path / "scan")
     scan = rupture.read_scan(tmp_path / "scan")

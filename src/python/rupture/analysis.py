@@ -74,16 +74,20 @@ def _column(frame, name, fallbacks=()):
 
 
 def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_method="fitted-maxima",
-            replicates=0, seed=1):
+            replicates=0, seed=1, walk_profile=True):
     """Analyses a curve given as
       - a DataFrame with columns strain, force (or force_top) and elastic_energy, units taken from
         names like strain[%] (e.g. Run.curves, read_curves()),
       - the path of a curves CSV (its breaks.csv beside it, if any, is read as the CLI does), or
       - three arrays: analyze(strain, force, energy, units=("%", "N", "mJ")).
     delay_method: "fitted-maxima" (default) or "shift-l1" (the paper's inversion, for comparison);
-    replicates: bootstrap noise replicates (0: the default 200); seed: their seed."""
+    replicates: bootstrap noise replicates (0: the default 200); seed: their seed;
+    walk_profile: on curves read as a random walk, the walk's steps follow the curve's falling
+    stiffness (default, as rupture analyze); False: one stationary step (rupture analyze
+    --no-walk-profile)."""
     if isinstance(data, (str, Path)):
-        return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed)))
+        return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed),
+                                              bool(walk_profile)))
     if force is None and hasattr(data, "columns"):
         frame = data
         columns = [_column(frame, "strain"), _column(frame, "force", ("force_top",)), _column(frame, "elastic_energy")]
@@ -97,4 +101,5 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     return Analysis(_rupture.analyze_arrays(np.asarray(strain, dtype=float).tolist(),
                                             np.asarray(force, dtype=float).tolist(),
                                             np.asarray(energy, dtype=float).tolist(),
-                                            units[0], units[1], units[2], delay_method, int(replicates), int(seed)))
+                                            units[0], units[1], units[2], delay_method, int(replicates), int(seed),
+                                            bool(walk_profile)))
