@@ -687,7 +687,7 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   return direct;
 }
 
-// x_c's or x_p's calibrated intervals about the estimate (critical_strain_scales,
+// x_c's or x_p's intervals about the estimate, sized by their factors (critical_strain_scales,
 // precursor_strain_scales); unscaled where the options ask for the bootstrap's own.
 // The 95 % interval is never inside the 68 % one, as for δ_x.
 StrainInterval strain_interval(const Measured& m, const IntervalScales& scales) {
@@ -886,7 +886,7 @@ nlohmann::json filter_json(const AnalysisResult& r) {
   return filter;
 }
 
-// x_c or x_p: value and sd, with the calibrated intervals and their factors where the bootstrap ran.
+// x_c or x_p: value and sd, with the intervals and their factors where the bootstrap ran.
 nlohmann::json strain_json(const std::optional<Measured>& m, const std::optional<StrainInterval>& interval,
                            const AnalysisResult& r) {
   nlohmann::json j = optional_json(m);

@@ -125,15 +125,15 @@ inline constexpr NoiseIntervalScales delta_interval_scales{
 
 // x_c's and x_p's intervals: ± level68 sd (68 %) and ± 1.96 level95 sd (95 %) about the estimate,
 // where sd is the bootstrap's spread with the smoothing shift and the peak fit's own error in
-// quadrature. Learned on the tuning set (bench/interval_scales.py --quantity x_c, x_p) and checked
-// on held-out 18 by δ_x's rule (docs/analysis.md, "The strains' own intervals"). With a stationary
-// walk step, factor 1 as for δ_x.
+// quadrature. Factors learned on the tuning set (x_c 0.5881/0.8221 white, 0.9682/1.0308 random walk;
+// x_p 0.6957/0.7793, 0.9084/0.9764) failed their check on held-out 18 (docs/analysis.md, "The
+// strains' own intervals"), so all are 1: these intervals are the sd's, not calibrated.
 inline constexpr NoiseIntervalScales critical_strain_scales{
-    .white_noise = {0.5881, 0.8221}, .random_walk = {1.0, 1.0}, .random_walk_profile = {0.9682, 1.0308}};
+    .white_noise = {1.0, 1.0}, .random_walk = {1.0, 1.0}, .random_walk_profile = {1.0, 1.0}};
 inline constexpr NoiseIntervalScales precursor_strain_scales{
-    .white_noise = {0.6957, 0.7793}, .random_walk = {1.0, 1.0}, .random_walk_profile = {0.9084, 0.9764}};
+    .white_noise = {1.0, 1.0}, .random_walk = {1.0, 1.0}, .random_walk_profile = {1.0, 1.0}};
 
-// A strain's calibrated intervals (x_c, x_p) and the factors that made them.
+// A strain's intervals (x_c, x_p) and the factors that sized them.
 struct StrainInterval {
   double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;
   IntervalScales scales{1.0, 1.0};

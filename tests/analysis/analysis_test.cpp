@@ -10,6 +10,7 @@
 #include <numeric>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "calibration_set.hpp"
 #include "core/error.hpp"
@@ -342,6 +343,63 @@ TEST(AnalyzeCurve, NoiseFreeCurvesOfEveryShapeRecoverTheirMaxima) {
     EXPECT_NEAR(r.Gamma->value, t.gamma(), 1e-2 * std::abs(t.gamma())) << s.name;
     EXPECT_NEAR(r.A_r->value, t.energy_ratio(), 1e-2 * t.energy_ratio()) << s.name;
   }
+}
+
+// A cubic over a peak that falls much faster after its top than it rises misses the maximum by an
+// amount no noise replicate shows (−3.5e-4 at α = 8.4, whatever the rows). The peak fits' own error
+// estimates it, within 15 %, and x_c's and x_p's 95 % intervals hold the truth; without the term
+// the sd was 6e-8.
+TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
+  using namespace calibration;
+  const Shape s = power_law(8.4);
+  const Truth t = truth(s);
+  const auto r = analyze_curve(exact_curve(s, 300), {});
+  ASSERT_TRUE(r.accepted) << r.rejection;
+  const double x_c_error = r.x_c->value - t.x_c, x_p_error = r.x_p->value - t.x_p;
+  EXPECT_GT(std::abs(x_c_error), 2e-4);  // the fit's error is there to be found
+  EXPECT_NEAR(r.peak_fit_error.x_c, std::abs(x_c_error), 0.15 * std::abs(x_c_error));
+  EXPECT_NEAR(r.peak_fit_error.x_p, std::abs(x_p_error), 0.15 * std::abs(x_p_error));
+  ASSERT_TRUE(r.x_c_interval && r.x_p_interval);
+  EXPECT_LE(r.x_c_interval->ci95_low, t.x_c);
+  EXPECT_GE(r.x_c_interval->ci95_high, t.x_c);
+  EXPECT_LE(r.x_p_interval->ci95_low, t.x_p);
+  EXPECT_GE(r.x_p_interval->ci95_high, t.x_p);
+  // δ_x's sd is the replicates' and the smoothing shift's: the fits' errors at x_c and x_p move
+  // together and are not added to it.
+  EXPECT_LT(r.delta_x->error, r.x_c->error);
+}
+
+// x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
+// the factors of the noise kind read (all 1 since held-out 18), and written to analysis.json.
+TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
+  using namespace calibration;
+  const auto bundle = analyze_curve(finite_bundle_curve(weibull(3), 1000, 100000, 7), {});
+  const auto white = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), {});
+  for (const auto* r : {&bundle, &white}) {
+    ASSERT_TRUE(r->accepted) << r->rejection;
+    const bool walk = reads_random_walk(*r);
+    for (const auto& [m, interval, scales] :
+         {std::tuple{*r->x_c, *r->x_c_interval, critical_strain_scales.for_noise(walk, true)},
+          std::tuple{*r->x_p, *r->x_p_interval, precursor_strain_scales.for_noise(walk, true)}}) {
+      EXPECT_NEAR(interval.ci68_high - m.value, scales.level68 * m.error, 1e-12 * m.error);
+      EXPECT_NEAR(m.value - interval.ci95_low, std::max(1.96 * scales.level95, scales.level68) * m.error,
+                  1e-12 * m.error);
+      EXPECT_EQ(interval.scales.level95, scales.level95);
+    }
+    const auto j = to_json(*r);
+    EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], walk ? "random walk" : "white");
+    EXPECT_EQ(j["x_p"]["ci95"][1].get<double>(), r->x_p_interval->ci95_high);
+    EXPECT_EQ(j["uncertainty"]["systematic"]["x_c"]["peak_fit"]["value"].get<double>(),
+              r->peak_fit_error.x_c);
+  }
+  EXPECT_TRUE(reads_random_walk(bundle));
+  EXPECT_FALSE(reads_random_walk(white));
+  EXPECT_EQ(white.x_c_interval->scales.level68, critical_strain_scales.white_noise.level68);
+  AnalysisOptions unscaled;
+  unscaled.calibrated_intervals = false;
+  const auto own = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), unscaled);
+  EXPECT_EQ(own.x_c_interval->ci68_high, own.x_c->value + own.x_c->error);
+  EXPECT_EQ(own.x_c_interval->ci95_low, own.x_c->value - 1.96 * own.x_c->error);
 }
 
 // The noise model tells white noise from a random walk, and measures each.
