@@ -203,7 +203,7 @@ struct PeakMeasurement {
 
 // The cubic fit's own error at a maximum: a cubic over a peak that is not one leaves its stationary
 // point off the true maximum by an amount that grows as the window's drop squared (measured on the
-// exact curves of 26 shapes at 300-5000 rows, docs/analysis.md, "The peak fits' own error"). Halving
+// exact curves of 26 shapes at 300-5000 rows, docs/analysis.md, "The strains' own intervals"). Halving
 // the drop removes three quarters of it, so 4/3 of the shift between the two fits estimates it
 // (Richardson); 0 where the narrower fit fails.
 double fit_window_error(std::span<const double> x, std::span<const double> y, const PeakFit& fit,
