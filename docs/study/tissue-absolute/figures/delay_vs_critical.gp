@@ -1,5 +1,5 @@
-# rupture 0.1.0 (5ed5ff1) plot tissue-absolute
-# read: tissue-absolute/results.csv
+# rupture 0.1.0 (c053cb2) plot /tmp/study2/tissue-absolute
+# read: /tmp/study2/tissue-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
