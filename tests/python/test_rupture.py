@@ -216,6 +216,11 @@ def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):
         assert a.document["delta_x"]["interval_scales"]["noise"] == "random walk"
         assert a.delta_x.error == expected["delta_x"]["error"]
         assert a.delta_x_ci95 == tuple(expected["delta_x"]["ci95"])
+        for key in ("x_c", "x_p"):
+            assert getattr(a, f"{key}_ci95") == tuple(expected[key]["ci95"])
+            assert getattr(a, f"{key}_ci68") == tuple(expected[key]["ci68"])
+            low, high = getattr(a, f"{key}_ci95")
+            assert low < getattr(a, key).value < high
     # The switch reaches the bootstrap: the two sds differ.
     assert (rupture.analyze(curve).delta_x.error
             != rupture.analyze(curve, walk_profile=False).delta_x.error)

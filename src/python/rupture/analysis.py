@@ -34,6 +34,11 @@ class Analysis:
             m = document.get(key)
             setattr(self, key, None if m is None else
                     Measured(_number(m["value"]), _number(m.get("error", 0.0)), m.get("unit", "")))
+        # x_c's and x_p's intervals, where the bootstrap ran (docs/analysis.md: their factors).
+        for key in ("x_c", "x_p"):
+            m = document.get(key) or {}
+            for level in ("ci68", "ci95"):
+                setattr(self, f"{key}_{level}", tuple(m[level]) if level in m else None)
         delta = document.get("delta_x")
         self.delta_x = None if delta is None else Measured(_number(delta["mean"]), _number(delta["sd"]), delta["unit"])
         self.delta_x_ci95 = None if delta is None else tuple(delta["ci95"])
