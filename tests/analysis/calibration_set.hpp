@@ -197,6 +197,10 @@ inline const HeldOutSet later_held_out_sets[] = {
     // factors learned on the tuning set and held-out 18 pooled were checked anywhere (all groups).
     {"held-out-19", 3.3, 1.1, 0.044, 0.59, 0.33, 2.6, {"weibull mixture k=3.9 43/57 x1.4", 0.43, 3.9, 1.4, 2.3}},
     {"held-out-19", 3.9, 3.6, 0.14, 0.85, 0.37, 6.4, {"weibull mixture k=4.2 60/40 x1.5", 0.6, 4.2, 1.5, 2.4}},
+    // Twelve shapes drawn by bench/draw_held_out.py 20, fixed before x_c's white and x_p's factors
+    // learned on the tuning set and held-outs 18 and 19 pooled were checked anywhere (all groups).
+    {"held-out-20", 5.6, 6.7, 0.16, 0.87, 0.56, 5.4, {"weibull mixture k=4.2 37/63 x1.6", 0.37, 4.2, 1.6, 2.5}},
+    {"held-out-20", 3.4, 6.1, 0.1, 0.89, 0.23, 3.1, {"weibull mixture k=3.9 58/42 x1.5", 0.58, 3.9, 1.5, 2.5}},
 };
 // clang-format on
 
@@ -282,7 +286,7 @@ inline bool in_first_held_out(const Shape& s) {
   return s.name.rfind("lognormal", 0) == 0 || s.name == "weibull mixture" || s.name == "powerlaw alpha=10";
 }
 
-// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-19,
+// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-20,
 // all; a held-out name's rows in order); empty for any other name.
 inline std::vector<Shape> calibration_set(const std::string& name) {
   std::vector<Shape> chosen;
