@@ -88,10 +88,13 @@ def main():
         for t in range(args.types):
             f.write(f"fix break{t + 1} all bond/break 1 {t + 1} {r0[t] + args.break_distance!r}\n")
     rms = math.sqrt(sum(e * e for e in error) / len(error))
-    print(f"{len(bonds)} bonds, rest lengths {low:.4f}-{high:.4f} mm in {args.types} types of "
-          f"{width:.2e} mm: initial stretch error max {max(error):.2e} mm, rms {rms:.2e} mm "
-          f"({100 * max(error) / args.break_distance:.1f} % and {100 * rms / args.break_distance:.1f} % "
-          f"of the break distance)")
+    if width == 0.0:
+        print(f"{len(bonds)} bonds, rest lengths {low:.4f}-{high:.4f} mm, one type per bond: exact rest lengths")
+    else:
+        print(f"{len(bonds)} bonds, rest lengths {low:.4f}-{high:.4f} mm in {args.types} types of "
+              f"{width:.2e} mm: initial stretch error max {max(error):.2e} mm, rms {rms:.2e} mm "
+              f"({100 * max(error) / args.break_distance:.1f} % and {100 * rms / args.break_distance:.1f} % "
+              f"of the break distance)")
 
 
 if __name__ == "__main__":

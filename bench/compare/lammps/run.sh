@@ -45,7 +45,8 @@ read -r dt l0 k b kc < <(python3 -c "
 import json
 j = json.load(open('rupture-check/run.json'))
 p, c = j['plan'], j['config']
-assert c['bonds']['break_rule'] == 'absolute' and not c['bonds']['scale_stiffness'] and c['glue']['mode'] == 'rigid'
+if c['bonds']['break_rule'] != 'absolute' or c['bonds']['scale_stiffness'] or c['glue']['mode'] != 'rigid':
+    raise SystemExit('$config: the deck models absolute-rule bonds of one stiffness and rigid glue only')
 k = c['bonds']['stiffness']
 print(repr(p['dt']['value']), repr(p['plate_separation']['value']), repr(k), repr(c['bonds']['break_distance']),
       repr(k * json.load(open('config.json'))['contacts']['stiffness_factor']))")
