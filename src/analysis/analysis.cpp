@@ -706,7 +706,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   DelayPosterior delay;
   const bool walk = reads_random_walk(r), walk_profile = options.uncertainty.walk_profile;
   const auto scales_of = [&](const NoiseIntervalScales& calibrated) {
-    return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : IntervalScales{1.0, 1.0};
+    return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : uncalibrated_scales;
   };
   r.x_c_interval = strain_interval(*r.x_c, scales_of(critical_strain_scales));
   r.x_p_interval = strain_interval(*r.x_p, scales_of(precursor_strain_scales));
@@ -886,6 +886,15 @@ nlohmann::json filter_json(const AnalysisResult& r) {
   return filter;
 }
 
+// The factors an interval was sized by, the noise kind that chose them, and whether they are
+// calibrated (passed a held-out check) or 1 for want of one.
+nlohmann::json scales_json(const IntervalScales& scales, const AnalysisResult& r) {
+  return {{"noise", noise_kind(r)},
+          {"ci68", scales.level68},
+          {"ci95", scales.level95},
+          {"calibrated", scales.calibrated}};
+}
+
 // x_c or x_p: value and sd, with the intervals and their factors where the bootstrap ran.
 nlohmann::json strain_json(const std::optional<Measured>& m, const std::optional<StrainInterval>& interval,
                            const AnalysisResult& r) {
@@ -893,8 +902,7 @@ nlohmann::json strain_json(const std::optional<Measured>& m, const std::optional
   if (!m || !interval) return j;
   j["ci68"] = {interval->ci68_low, interval->ci68_high};
   j["ci95"] = {interval->ci95_low, interval->ci95_high};
-  j["interval_scales"] = {
-      {"noise", noise_kind(r)}, {"ci68", interval->scales.level68}, {"ci95", interval->scales.level95}};
+  j["interval_scales"] = scales_json(interval->scales, r);
   return j;
 }
 
@@ -919,8 +927,7 @@ nlohmann::json delay_json(const AnalysisResult& r) {
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
         "level's half-widths scaled by interval_scales (calibrated per kind of noise; 1, the bootstrap's "
         "own, on a random walk with a stationary step: docs/analysis.md, Calibration)";
-    delta["interval_scales"] = {
-        {"noise", noise_kind(r)}, {"ci68", r.interval_scales.level68}, {"ci95", r.interval_scales.level95}};
+    delta["interval_scales"] = scales_json(r.interval_scales, r);
     delta["bias"] = r.bootstrap_bias.delta_x;
     delta["sampling_distribution"] = density;
   } else {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/bootstrap.hpp"
@@ -110,9 +111,17 @@ struct AnalysisOptions {
 //   and held-outs 13 and 14 pooled, passed on held-out 16 (67.4 %, 95.1 %; lowest group 64.8 %,
 //   94.1 %; 600 of 600 accepted). Estimates without the half-bias correction, with factors 0.9017
 //   and 1.0153, failed held-out 17 (docs/analysis.md, "The bootstrap's bias on a random walk").
+// calibrated: the factors passed such a check; false where they are 1 for want of one (or the options
+// asked for the bootstrap's own), so a report can say which intervals carry a promise.
 struct IntervalScales {
-  double level68, level95;
+  double level68 = 1.0, level95 = 1.0;
+  bool calibrated = false;
 };
+inline constexpr IntervalScales uncalibrated_scales{};
+// What a printed interval adds after its numbers: nothing when calibrated, else that it is not.
+constexpr std::string_view calibration_mark(const IntervalScales& scales) {
+  return scales.calibrated ? "" : ", not calibrated";
+}
 struct NoiseIntervalScales {
   IntervalScales white_noise, random_walk, random_walk_profile;
   constexpr const IntervalScales& for_noise(bool random_walk_dominates, bool walk_profile) const {
@@ -120,8 +129,9 @@ struct NoiseIntervalScales {
     return walk_profile ? random_walk_profile : random_walk;
   }
 };
-inline constexpr NoiseIntervalScales delta_interval_scales{
-    .white_noise = {0.7062, 0.8581}, .random_walk = {1.0, 1.0}, .random_walk_profile = {0.9744, 1.0973}};
+inline constexpr NoiseIntervalScales delta_interval_scales{.white_noise = {0.7062, 0.8581, true},
+                                                           .random_walk = uncalibrated_scales,
+                                                           .random_walk_profile = {0.9744, 1.0973, true}};
 
 // x_c's and x_p's intervals: ± level68 sd (68 %) and ± 1.96 level95 sd (95 %) about the estimate,
 // where sd is the bootstrap's spread with the smoothing shift and the peak fit's own error in
@@ -131,15 +141,17 @@ inline constexpr NoiseIntervalScales delta_interval_scales{
 // step profile passed (67.9 %, 96.5 %; lowest group 65.2 %, 95.4 %); x_c white (0.6718/0.9091) and
 // x_p white (0.7280/0.8439) and random walk (0.9189/1.0055) failed, so those are 1: the sd's own
 // intervals, not calibrated.
-inline constexpr NoiseIntervalScales critical_strain_scales{
-    .white_noise = {1.0, 1.0}, .random_walk = {1.0, 1.0}, .random_walk_profile = {1.0266, 1.1339}};
-inline constexpr NoiseIntervalScales precursor_strain_scales{
-    .white_noise = {1.0, 1.0}, .random_walk = {1.0, 1.0}, .random_walk_profile = {1.0, 1.0}};
+inline constexpr NoiseIntervalScales critical_strain_scales{.white_noise = uncalibrated_scales,
+                                                            .random_walk = uncalibrated_scales,
+                                                            .random_walk_profile = {1.0266, 1.1339, true}};
+inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = uncalibrated_scales,
+                                                             .random_walk = uncalibrated_scales,
+                                                             .random_walk_profile = uncalibrated_scales};
 
 // A strain's intervals (x_c, x_p) and the factors that sized them.
 struct StrainInterval {
   double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;
-  IntervalScales scales{1.0, 1.0};
+  IntervalScales scales;
 };
 
 // A measured number with its 1-sigma uncertainty (0 when not estimated) and unit.
@@ -170,7 +182,7 @@ struct AnalysisResult {
   // The noise kind read in each curve over the whole record: whether a random walk dominates it.
   // One filter serves both; its automatic choice ran on the increments where either reads so.
   bool force_walk = false, energy_walk = false;
-  IntervalScales interval_scales{1.0, 1.0};  // the factors applied to δ_x's intervals (fitted maxima)
+  IntervalScales interval_scales;  // the factors applied to δ_x's intervals (fitted maxima)
   int derivative_window = 0;
   double force_noise = 0.0, energy_noise = 0.0;               // σ̂ of the raw curves (third differences)
   std::optional<PeakFit> force_peak, energy_peak, rate_peak;  // x_c/F_c, x_m/E_max, x_p/ℰ_max

@@ -52,8 +52,8 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   const auto strain_line = [&](const char* name, const std::optional<analysis::Measured>& m,
                                const std::optional<analysis::StrainInterval>& interval) {
     if (!m || !interval) return line(name, m);
-    fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}])\n", name, with_error(*m), interval->ci95_low,
-               interval->ci95_high);
+    fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}]{})\n", name, with_error(*m), interval->ci95_low,
+               interval->ci95_high, analysis::calibration_mark(interval->scales));
   };
   strain_line("x_c", r.x_c, r.x_c_interval);
   line("F_c", r.F_c);
@@ -63,9 +63,9 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   line("E_max", r.E_max);
   if (r.delay) {
     const auto& d = *r.delay;
-    fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}])\n",
+    fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}]{})\n",
                d.mean, d.sd, r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high,
-               d.ci95_low, d.ci95_high);
+               d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales));
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);

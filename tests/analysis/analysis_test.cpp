@@ -370,7 +370,8 @@ TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
 }
 
 // x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
-// the factors of the noise kind read (all 1 since held-out 18), and written to analysis.json.
+// the factors of the noise kind read (1 where none passed a held-out check, and marked so), and written
+// to analysis.json.
 TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   using namespace calibration;
   const auto bundle = analyze_curve(finite_bundle_curve(weibull(3), 1000, 100000, 7), {});
@@ -385,6 +386,7 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
       EXPECT_NEAR(m.value - interval.ci95_low, std::max(1.96 * scales.level95, scales.level68) * m.error,
                   1e-12 * m.error);
       EXPECT_EQ(interval.scales.level95, scales.level95);
+      EXPECT_EQ(interval.scales.calibrated, scales.calibrated);
     }
     const auto j = to_json(*r);
     EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], walk ? "random walk" : "white");
@@ -400,6 +402,8 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   const auto own = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), unscaled);
   EXPECT_EQ(own.x_c_interval->ci68_high, own.x_c->value + own.x_c->error);
   EXPECT_EQ(own.x_c_interval->ci95_low, own.x_c->value - 1.96 * own.x_c->error);
+  EXPECT_FALSE(own.x_c_interval->scales.calibrated);
+  EXPECT_FALSE(to_json(own)["delta_x"]["interval_scales"]["calibrated"].get<bool>());
 }
 
 // The noise model tells white noise from a random walk, and measures each.

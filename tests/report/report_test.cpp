@@ -255,6 +255,9 @@ TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
   if (!analysis.at("accepted").get<bool>()) {
     EXPECT_THAT(facts.body_text, HasSubstr("Analysis rejected"));
   }
+  // The summary says when δ_x's interval carries no calibration, as analysis.json records.
+  const bool calibrated = analysis.at("delta_x").at("interval_scales").at("calibrated").get<bool>();
+  EXPECT_EQ(facts.body_text.find(", not calibrated)") == std::string::npos, calibrated) << facts.body_text;
   // α as analysis.json gives it (a plain number), never a dash when it is there.
   const auto& alpha = analysis.at("alpha").at("from_delta_over_x_p");
   ASSERT_TRUE(alpha.is_number()) << "the block run should imply an α";

@@ -39,6 +39,11 @@ class Analysis:
             m = document.get(key) or {}
             for level in ("ci68", "ci95"):
                 setattr(self, f"{key}_{level}", tuple(m[level]) if level in m else None)
+        # Whether each quantity's intervals are calibrated (their factors passed a held-out check) or
+        # the bootstrap's own, with no coverage promise; False where the file does not say.
+        self.intervals_calibrated = {
+            key: bool(((document.get(key) or {}).get("interval_scales") or {}).get("calibrated", False))
+            for key in ("x_c", "x_p", "delta_x")}
         delta = document.get("delta_x")
         self.delta_x = None if delta is None else Measured(_number(delta["mean"]), _number(delta["sd"]), delta["unit"])
         self.delta_x_ci95 = None if delta is None else tuple(delta["ci95"])
