@@ -1,7 +1,7 @@
-// The δ_x intervals' coverage in CI: two shares of the calibration table (bench/analysis_calibration
-// has the whole of it). Statistical and long (a minute in Release), so labelled `long`: they run in
-// the Release test run, not again under the sanitizers (which execute the same code in the shorter
-// analysis tests).
+// The calibrated intervals' coverage in CI (δ_x's, and x_c's on random walks): two shares of the calibration
+// table (bench/analysis_calibration has the whole of it). Statistical and long (a minute in Release), so
+// labelled `long`: they run in the Release test run, not again under the sanitizers (which execute the same
+// code in the shorter analysis tests).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -55,6 +55,7 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
   const std::vector<Shape> set = {weibull(3), weibull(5), power_law(3), uniform(0.2, 1.0), power_law(-0.5)};
   const int curves = 60;
   int accepted = 0, covered68 = 0, covered95 = 0;
+  int x_c_calibrated = 0, x_c_covered68 = 0, x_c_covered95 = 0;
   for (int k = 0; k < curves; ++k) {
     const Shape& s = set[static_cast<std::size_t>(k) % set.size()];
     const std::size_t rows = k % 2 == 0 ? 300 : 1000;
@@ -64,9 +65,14 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
     const auto r = analyze_curve(c, options);
     if (!r.accepted) continue;
     ++accepted;
-    const double truth = calibration::truth(s).delta();
+    const auto exact = calibration::truth(s);
+    const double truth = exact.delta();
     covered68 += r.delay->ci68_low <= truth && truth <= r.delay->ci68_high;
     covered95 += r.delay->ci95_low <= truth && truth <= r.delay->ci95_high;
+    if (!r.x_c_interval->scales.calibrated) continue;  // read as white: x_c's factors are not calibrated
+    ++x_c_calibrated;
+    x_c_covered68 += r.x_c_interval->ci68_low <= exact.x_c && exact.x_c <= r.x_c_interval->ci68_high;
+    x_c_covered95 += r.x_c_interval->ci95_low <= exact.x_c && exact.x_c <= r.x_c_interval->ci95_high;
   }
   EXPECT_GE(accepted, curves - 1);
   const auto bound = [&](double p) { return 4.0 * std::sqrt(accepted * p * (1.0 - p)); };
@@ -74,8 +80,18 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
   // passed held-out 16 (analysis.hpp, delta_interval_scales): both levels held from both sides.
   EXPECT_NEAR(covered68, 0.6827 * accepted, bound(0.6827)) << "68 % interval coverage";
   EXPECT_NEAR(covered95, 0.95 * accepted, std::max(bound(0.95), 2.0)) << "95 % interval coverage";
-  std::printf("finite bundles: %d accepted of %d; coverage 68%%: %d, 95%%: %d\n", accepted, curves, covered68,
-              covered95);
+  // x_c's intervals on a random walk, sized by the factors that passed held-out 19
+  // (critical_strain_scales.random_walk_profile): the same bounds.
+  // Counted on the curves read as a random walk, where those factors apply.
+  EXPECT_GE(x_c_calibrated, accepted - 6);
+  const auto x_c_bound = [&](double p) { return 4.0 * std::sqrt(x_c_calibrated * p * (1.0 - p)); };
+  EXPECT_NEAR(x_c_covered68, 0.6827 * x_c_calibrated, x_c_bound(0.6827)) << "x_c's 68 % interval coverage";
+  EXPECT_NEAR(x_c_covered95, 0.95 * x_c_calibrated, std::max(x_c_bound(0.95), 2.0))
+      << "x_c's 95 % interval coverage";
+  std::printf(
+      "finite bundles: %d accepted of %d; delta_x coverage 68%%: %d, 95%%: %d; x_c (%d read as a walk): "
+      "%d, %d\n",
+      accepted, curves, covered68, covered95, x_c_calibrated, x_c_covered68, x_c_covered95);
 }
 
 }  // namespace
