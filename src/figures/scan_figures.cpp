@@ -147,17 +147,16 @@ std::optional<Figure> delay_figure(const std::vector<Point>& points) {
   const double line_low = *x_low / 3.0, line_high = *x_high * 3.0;
   panel.xrange = log_range(*x_low, *x_high, 3.0);
   panel.yrange = log_range(std::min(*y_low, line_low * 0.1), std::max(*y_high, line_high / 3.0), 3.0);
-  add_group(
-      figure, panel, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval",
-      {"x_c[%]", "delta_x[%]", "x_c_low[%]", "x_c_high[%]", "delta_x_lo68[%]", "delta_x_hi68[%]"},
-      std::move(c),
-      {.title = not_positive
-                    ? fmt::format("DEM runs (68 % intervals; {} with δ_x ≤ 0 not on log axes)", not_positive)
-                    : std::string("DEM runs (68 % intervals)"),
-       .style = Style::xyerrorbars,
-       .extra_columns = {2, 3, 4, 5},
-       .color = "#1f77b4",
-       .point_size = 1.3});
+  add_group(figure, panel, "analysed points: x_c, delta_x, x_c -/+ sd, delta_x 68 % interval",
+            {"x_c[%]", "delta_x[%]", "x_c_low[%]", "x_c_high[%]", "delta_x_lo68[%]", "delta_x_hi68[%]"},
+            std::move(c),
+            {.title = not_positive ? fmt::format("DEM runs (68 % intervals; {} with δ_x ≤ 0 not on log axes)",
+                                                 not_positive)
+                                   : std::string("DEM runs (68 % intervals)"),
+             .style = Style::xyerrorbars,
+             .extra_columns = {2, 3, 4, 5},
+             .color = "#1f77b4",
+             .point_size = 1.3});
   // Eq. 16: x_c = r(α) x_p, so δ_x = (1 - 1/r(α)) x_c.
   for (const auto& [alpha, color] : {std::pair{alpha_low, "#d62728"}, std::pair{alpha_high, "#0000cc"}}) {
     const double slope = 1.0 - 1.0 / fbm::power_law::critical_to_precursor_ratio(alpha);

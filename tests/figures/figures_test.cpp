@@ -380,8 +380,7 @@ TEST(Figures, ScanFiguresFromResultsTable) {
   EXPECT_THAT(slurp(out / "mechanism_map.gp"), HasSubstr("set logscale x 10"));
 
   const auto delay = blocks(out / "delay_vs_critical.dat");
-  const Block* points =
-      find_block(delay, "analysed points: x_c, delta_x (posterior mean), x_c -/+ sd, delta_x 68 % interval");
+  const Block* points = find_block(delay, "analysed points: x_c, delta_x, x_c -/+ sd, delta_x 68 % interval");
   ASSERT_NE(points, nullptr);
   EXPECT_EQ(points->rows.size(), std::size_t(ScanFixture::positive_delay));
   EXPECT_THAT(slurp(out / "delay_vs_critical.gp"), HasSubstr("1 with δ_x ≤ 0 not on log axes"));
