@@ -220,6 +220,12 @@ std::string mechanism_text(const json& mechanism) {
          io::escape_markup(mechanism.value("features_say", std::string("?"))) + ")";
 }
 
+// Whether analysis.json says δ_x's factors passed a held-out check (docs/analysis.md, Calibration);
+// false for files that do not say.
+bool interval_calibrated(const json& delta) {
+  return delta.contains("interval_scales") && delta["interval_scales"].value("calibrated", false);
+}
+
 std::string run_summary(const json& analysis) {
   if (analysis.is_null()) {
     return "<p class=\"summary\">Not analysed yet: run <code>rupture analyze curves.csv</code> in this "
@@ -233,9 +239,7 @@ std::string run_summary(const json& analysis) {
   if (x_p.is_object() && x_c.is_object() && delta.is_object()) {
     const std::string unit = io::escape_markup(delta.value("unit", ""));
     const auto ci95 = delta.at("ci95");
-    // analysis.json says whether δ_x's factors passed a held-out check (docs/analysis.md, Calibration).
-    const bool calibrated =
-        delta.contains("interval_scales") && delta["interval_scales"].value("calibrated", false);
+    const bool calibrated = interval_calibrated(delta);
     text = fmt::format(
         "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, the force at "
         "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}{}): {}.",
@@ -289,7 +293,8 @@ std::string analysis_section(const json& analysis) {
     };
     html +=
         "<p>Distribution of δ<sub>x</sub> (bootstrap replicates, or the posterior of the shift-l1 "
-        "method):</p>\n";
+        "method)" +
+        std::string(interval_calibrated(delta) ? "" : "; its intervals are not calibrated") + ":</p>\n";
     html += table({"mode / estimate", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
                   {{number_text(delta["map"].get<double>()), number_text(delta["mean"].get<double>()),
                     number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()),

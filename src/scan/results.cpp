@@ -37,7 +37,7 @@ const std::vector<ResultColumn>& result_columns() {
       {"delta_x", "%", true, "delta_x = x_c - x_p of the fitted maxima (rupture analyze's default)"},
       {"delta_x_sd", "%", true, "its bootstrap standard deviation"},
       {"delta_x_map", "%", true, "the same estimate (a posterior maximum under --delay-method shift-l1)"},
-      {"delta_x_lo68", "%", true, "68 % interval, lower end (calibrated factors: docs/analysis.md)"},
+      {"delta_x_lo68", "%", true, "68 % interval, lower end (scaled as docs/analysis.md, Calibration, says)"},
       {"delta_x_hi68", "%", true, "68 % interval, upper end"},
       {"delta_x_lo95", "%", true, "95 % interval, lower end"},
       {"delta_x_hi95", "%", true, "95 % interval, upper end"},

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "analysis/analysis.hpp"
@@ -30,7 +31,9 @@ struct Coverage {
   void add(double truth, const StrainInterval& i) {
     add(truth, i.ci68_low, i.ci68_high, i.ci95_low, i.ci95_high);
   }
-  // Both levels at their nominal rates within ± 4 binomial sd (at least 2 curves at 95 %).
+  // Both levels at their nominal rates within ± 4 binomial sd (at least 2 curves at 95 %). On tens of
+  // curves that is a guard against gross miscalibration (an interval a third too narrow), not a
+  // calibration: the 95 % level can only fail from below, since nominal + 4 sd exceeds the count.
   void expect_nominal(const char* what) const {
     const auto bound = [&](double p) { return 4.0 * std::sqrt(curves * p * (1.0 - p)); };
     EXPECT_NEAR(covered68, 0.6827 * curves, bound(0.6827)) << what << ": 68 % interval coverage";
@@ -86,14 +89,18 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
   }
   EXPECT_GE(delta.curves, curves - 1);
   // On random-walk noise δ_x's intervals follow the walk's step profile, scaled by the factors that
-  // passed held-out 16 (analysis.hpp, delta_interval_scales); x_c's and x_p's by those that passed
-  // held-outs 19 and 20 (critical_strain_scales, precursor_strain_scales). Both levels are held from
-  // both sides.
+  // passed held-out 16 (analysis.hpp, delta_interval_scales); x_c's and x_p's by their own where those
+  // passed a held-out check (critical_strain_scales, precursor_strain_scales).
   delta.expect_nominal("delta_x");
-  EXPECT_GE(x_c.curves, delta.curves - 6) << "most bundles read as a random walk";
-  x_c.expect_nominal("x_c");
-  EXPECT_EQ(x_p.curves, x_c.curves);
-  x_p.expect_nominal("x_p");
+  for (const auto& [name, scales, coverage] :
+       {std::tuple{"x_c", critical_strain_scales, x_c}, std::tuple{"x_p", precursor_strain_scales, x_p}}) {
+    if (!scales.random_walk_profile.calibrated) {
+      EXPECT_EQ(coverage.curves, 0) << name;
+      continue;
+    }
+    EXPECT_GE(coverage.curves, delta.curves - 6) << name << ": most bundles read as a random walk";
+    coverage.expect_nominal(name);
+  }
 }
 
 }  // namespace
