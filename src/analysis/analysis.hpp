@@ -120,10 +120,9 @@ struct IntervalScales {
   bool calibrated = false;
 };
 inline constexpr IntervalScales uncalibrated_scales{};
-// What a printed interval adds after its numbers: nothing when calibrated, else that it is not.
-constexpr std::string_view calibration_mark(const IntervalScales& scales) {
-  return scales.calibrated ? "" : ", not calibrated";
-}
+// What a printed interval adds after its numbers: nothing when calibrated, else that it is not
+// (the terminal, the study's last line and the report say it alike).
+constexpr std::string_view calibration_mark(bool calibrated) { return calibrated ? "" : ", not calibrated"; }
 struct NoiseIntervalScales {
   IntervalScales white_noise, random_walk, random_walk_profile;
   constexpr const IntervalScales& for_noise(bool random_walk_dominates, bool walk_profile) const {

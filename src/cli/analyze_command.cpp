@@ -53,7 +53,7 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
                                const std::optional<analysis::StrainInterval>& interval) {
     if (!m || !interval) return line(name, m);
     fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}]{})\n", name, with_error(*m), interval->ci95_low,
-               interval->ci95_high, analysis::calibration_mark(interval->scales));
+               interval->ci95_high, analysis::calibration_mark(interval->scales.calibrated));
   };
   strain_line("x_c", r.x_c, r.x_c_interval);
   line("F_c", r.F_c);
@@ -65,7 +65,7 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
     const auto& d = *r.delay;
     fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}]{})\n",
                d.mean, d.sd, r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high,
-               d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales));
+               d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales.calibrated));
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);

@@ -132,7 +132,7 @@ void print_outcome(const std::string& html, const analysis::AnalysisResult& r) {
         "report: {}; precursor: x_p = {:.3g} %, x_c = {:.3g} % (delta_x = {:.2g} +- {:.1g} %, 95 % "
         "[{:.2g}, {:.2g}] %{}): {}{}\n",
         html, r.x_p->value, r.x_c->value, r.delay->mean, r.delay->sd, r.delay->ci95_low, r.delay->ci95_high,
-        analysis::calibration_mark(r.interval_scales),
+        analysis::calibration_mark(r.interval_scales.calibrated),
         analysis::precursor_order(r.delay->ci95_low, r.delay->ci95_high),
         r.accepted ? "" : "; analysis rejected: " + r.rejection);
   } else {

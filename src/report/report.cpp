@@ -239,13 +239,12 @@ std::string run_summary(const json& analysis) {
   if (x_p.is_object() && x_c.is_object() && delta.is_object()) {
     const std::string unit = io::escape_markup(delta.value("unit", ""));
     const auto ci95 = delta.at("ci95");
-    const bool calibrated = interval_calibrated(delta);
     text = fmt::format(
         "Precursor: the energy rate peaks at x<sub>p</sub> = {} {u}, the force at "
         "x<sub>c</sub> = {} {u}; delay δ<sub>x</sub> = {} ± {} {u} (95 % interval [{}, {}] {u}{}): {}.",
         value_text(x_p), value_text(x_c), number_text(delta["mean"].get<double>()),
         number_text(delta["sd"].get<double>()), number_text(ci95.at(0).get<double>()),
-        number_text(ci95.at(1).get<double>()), calibrated ? "" : ", not calibrated",
+        number_text(ci95.at(1).get<double>()), analysis::calibration_mark(interval_calibrated(delta)),
         io::escape_markup(analysis::precursor_order(ci95.at(0).get<double>(), ci95.at(1).get<double>())),
         fmt::arg("u", unit));
   } else {
