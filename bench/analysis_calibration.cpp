@@ -9,8 +9,9 @@
 // the curve (BootstrapOptions::walk_profile) | stationary-walk: one step along the curve].
 // The per-curve file holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak
 // fits' own errors (the systematic terms in x_c's and x_p's sd) and the noise the analysis measured on
-// F and E_e as a share of their maxima (files before held-out 22 lack those two columns), from which
-// bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
+// F and E_e as a share of their maxima, with its white and random-walk parts (per sample and per step)
+// apart (files before held-out 22 lack the first two columns, before held-out-22-edge the other four), from
+// which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
 // a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run
 // once for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6
 // checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind reading,
@@ -61,10 +62,11 @@ int main(int argc, char** argv) {
                    argv[3]);
       return 2;
     }
-    per_curve << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
-                 "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
-                 "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
-                 "energy_noise_share\n";
+    per_curve
+        << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
+           "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
+           "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
+           "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share\n";
     per_curve.precision(10);
   }
   AnalysisOptions
@@ -99,8 +101,15 @@ int main(int argc, char** argv) {
                     << ',' << r.peak_fit_error.x_c << ',' << r.peak_fit_error.x_p << ','
                     << r.force_noise / r.F_c->value << ',';
           if (r.E_max) per_curve << r.energy_noise / r.E_max->value;
+          const auto& noise = r.noise_model;
+          per_curve << ',' << noise.force.white / r.F_c->value << ',' << noise.force.walk / r.F_c->value
+                    << ',';
+          if (r.E_max)
+            per_curve << noise.energy.white / r.E_max->value << ',' << noise.energy.walk / r.E_max->value;
+          else
+            per_curve << ',';
         } else {
-          per_curve << ",,,,,,," << t.x_c << ",,," << t.x_p << ",,,,,,,,,";
+          per_curve << ",,,,,,," << t.x_c << ",,," << t.x_p << ",,,,,,,,,,,,,";
         }
         per_curve << '\n' << std::flush;
       }
