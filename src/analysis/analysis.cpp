@@ -228,22 +228,6 @@ std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_
   return filtered_force.size() - 1;
 }
 
-// ℰ of a loading from rest rises from 0. Where it falls from the start of the search instead, and
-// that start lies within the filter's edge of the filtered series' first sample, the edge is showing:
-// the filtered E_e follows the padding pinned to the first noisy sample, and its slope can beat the
-// true maximum (α = 7 at 1 % noise and 5,000 rows: 1.1 against 0.55). The search then starts at
-// ℰ's first local minimum, sought within twice the filter's edge. A bootstrap window that starts
-// inside the record has no such edge there (its padding is excluded): a maximum at its start is
-// the peak wandering out, and stays a failed replicate.
-std::size_t past_the_filters_edge(std::span<const double> rate, std::size_t first, std::size_t end,
-                                  std::size_t edge) {
-  if (first + 1 > end || rate[first + 1] >= rate[first]) return first;
-  const std::size_t limit = std::min(end, first + 2 * edge);
-  for (std::size_t i = first + 1; i < limit; ++i)
-    if (rate[i + 1] >= rate[i]) return i;
-  return first;
-}
-
 // Filter, derivative and the three maxima: the one measurement made on the data and on every
 // bootstrap replicate.
 PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double> force,
@@ -269,13 +253,9 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   // The derivative's first and last half-windows are one-sided polynomial extrapolations, whose
   // noise is several times the interior's: on a noisy curve they would win the maximum.
   const auto half = static_cast<std::size_t>(search.derivative_window / 2);
-  const std::size_t inner_first = std::max(first, std::min(half, m.phase_end));
+  const std::size_t rate_first = std::max(first, std::min(half, m.phase_end));
   const std::size_t rate_end =
-      std::max(inner_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
-  const std::size_t edge = edge_samples(filter);
-  const std::size_t rate_first = inner_first <= half + edge
-                                     ? past_the_filters_edge(m.energy_rate, inner_first, rate_end, edge)
-                                     : inner_first;
+      std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
   const auto rate_xs = xs.subspan(rate_first, rate_end - rate_first + 1);
   const auto rate_ys = std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1);
   m.rate = fit_peak(rate_xs, rate_ys, 0.0, 1.0, search.peak);
