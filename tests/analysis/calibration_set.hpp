@@ -209,6 +209,10 @@ inline const HeldOutSet later_held_out_sets[] = {
     // on the tuning set and held-outs 16 to 21 pooled were checked anywhere (all groups).
     {"held-out-22", 5.5, 1.9, 0.083, 0.98, 0.44, 7.6, {"weibull mixture k=5.8 57/43 x1.5", 0.57, 5.8, 1.5, 2.1}},
     {"held-out-22", 1.7, 8.8, 0.064, 0.77, 0.28, 7.1, {"weibull mixture k=5.8 53/47 x1.5", 0.53, 5.8, 1.5, 2.1}},
+    // Twelve shapes drawn by bench/draw_held_out.py 23, fixed before x_p's random-walk factors learned
+    // on the tuning set and held-outs 18 to 22 pooled were checked anywhere (all groups).
+    {"held-out-23", 5.7, 9.5, 0.042, 0.94, 0.41, 2.8, {"weibull mixture k=4.3 38/62 x1.3", 0.38, 4.3, 1.3, 2}},
+    {"held-out-23", 1.9, 4.9, 0.077, 0.85, 0.51, 5.9, {"weibull mixture k=5.9 55/45 x1.4", 0.55, 5.9, 1.4, 1.9}},
 };
 // clang-format on
 
@@ -299,7 +303,7 @@ inline bool in_first_held_out(const Shape& s) {
   return s.name.rfind("lognormal", 0) == 0 || s.name == "weibull mixture" || s.name == "powerlaw alpha=10";
 }
 
-// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-22,
+// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-23,
 // all; a held-out name's rows in order); empty for any other name.
 inline std::vector<Shape> calibration_set(const std::string& name) {
   std::vector<Shape> chosen;
