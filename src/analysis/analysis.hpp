@@ -113,8 +113,9 @@ struct AnalysisOptions {
 //   four curves short on held-out 21 (docs/analysis.md, "δ_x's random-walk factors learned on 78
 //   shapes"). Estimates without the half-bias correction, with factors 0.9017 and 1.0153, failed
 //   held-out 17 ("The bootstrap's bias on a random walk").
-// calibrated: the factors passed such a check; false where they are 1 for want of one (or the options
-// asked for the bootstrap's own), so a report can say which intervals carry a promise.
+// calibrated: the factors passed such a check; false where they are 1 for want of one, or kept from a
+// check they failed, or the options asked for the bootstrap's own, so a report can say which
+// intervals carry a promise.
 struct IntervalScales {
   double level68 = 1.0, level95 = 1.0;
   bool calibrated = false;
@@ -139,11 +140,13 @@ inline constexpr NoiseIntervalScales delta_interval_scales{.white_noise = {0.706
 // quadrature. Each kind's factors ship only after passing a held-out check fixed before it ran
 // (docs/analysis.md, "The strains' own intervals" and the held-out 19 to 21 sections):
 // - x_c, random walk with the step profile: learned on the tuning set and held-outs 18 to 20 pooled,
-//   passed held-out 21 (67.7 %, 95.1 %; lowest group 64.5 %, 94.1 %). The earlier 1.0266/1.1339
+//   passed held-out 21 (67.7 %, 95.1 %; lowest group 64.5 %, 94.1 %), 22 and 23. The earlier 1.0266/1.1339
 //   passed held-out 19 and missed held-out 20 by one curve.
-// - x_p, random walk with the step profile: learned on the tuning set and held-outs 18 and 19,
-//   passed held-out 20 (71.7 %, 94.5 %) and held-out 21 (67.2 %, 95.1 %); on held-out 22 one curve
-//   short at N = 10^4 at 95 % (168 of 184).
+// - x_p, random walk with the step profile: 0.9423/1.0074 (learned on the tuning set and held-outs
+//   18 and 19) passed held-outs 20 and 21 and missed 22 by one curve; relearned on the tuning set and
+//   held-outs 18 to 22 (0.9356/1.0296), both failed held-out 23's rule 2 through six white-noise
+//   curves read as a walk (α = 9.5, 0.2 %, 300 rows: 1 of 6 covered at 68 %), so, as fixed before
+//   that check, the relearned factors are kept and not calibrated.
 // - x_p, white: learned on the tuning set and held-outs 18 to 20, 0.7556/0.8785 passed held-out 21
 //   and failed held-out 22 (white 1 % at 68 %: 58.2 %, seven curves short): one pass in two is not
 //   a promise, so 1 and not calibrated (± sd covered 73.5-83.9 % per white group there).
@@ -154,7 +157,7 @@ inline constexpr NoiseIntervalScales critical_strain_scales{.white_noise = uncal
                                                             .random_walk_profile = {1.0468, 1.1232, true}};
 inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = uncalibrated_scales,
                                                              .random_walk = uncalibrated_scales,
-                                                             .random_walk_profile = {0.9423, 1.0074, true}};
+                                                             .random_walk_profile = {0.9356, 1.0296, false}};
 
 // A strain's intervals (x_c, x_p) and the factors that sized them.
 struct StrainInterval {
