@@ -151,7 +151,8 @@ inline constexpr NoiseIntervalScales delta_interval_scales{.white_noise = {0.706
 //   and failed held-out 22 (white 1 % at 68 %: 58.2 %, seven curves short): one pass in two is not
 //   a promise, so 1 and not calibrated (± sd covered 73.5-83.9 % per white group there).
 // - x_c, white: failed held-outs 18 to 21 (on 21 only through the bundles read as white), so 1:
-//   the sd's own intervals, too wide under white noise (± sd covers 81-84 % there), not calibrated.
+//   the sd's own intervals, too wide under white noise (± sd covers 75-84 % per white group on
+//   held-outs 20 to 22), not calibrated.
 inline constexpr NoiseIntervalScales critical_strain_scales{.white_noise = uncalibrated_scales,
                                                             .random_walk = uncalibrated_scales,
                                                             .random_walk_profile = {1.0468, 1.1232, true}};
