@@ -3,14 +3,16 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-23|all]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-24|all]
 // [per-curve CSV] [all|white|bundle|mixed: the noise groups, default all; mixed: bundles whose F also
 // carries white noise, as DEM curves do] [walk-profile (the default): random-walk steps that follow
 // the curve (BootstrapOptions::walk_profile) | stationary-walk: one step along the curve].
 // The per-curve file holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak
 // fits' own errors (the systematic terms in x_c's and x_p's sd) and the noise the analysis measured on
 // F and E_e as a share of their maxima, with its white and random-walk parts (per sample and per step)
-// apart (files before held-out 22 lack the first two columns, before held-out-22-edge the other four), from
+// apart (files before held-out 22 lack the first two columns, before held-out-22-edge the other four).
+// `noise` is the kind whose factors the intervals take (scored_as_random_walk), `noise_read` the kind
+// read over the whole record (reads_random_walk; from held-out 24 on; before, `noise` was that), from
 // which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
 // a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run
 // once for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6
@@ -37,7 +39,7 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-23, all\n",
+                 "held-out-24, all\n",
                  which.c_str());
     return 2;
   }
@@ -62,11 +64,11 @@ int main(int argc, char** argv) {
                    argv[3]);
       return 2;
     }
-    per_curve
-        << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
-           "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
-           "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
-           "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share\n";
+    per_curve << "set,group,shape,rows,seed,noise,accepted,delta_x_true,delta_x,delta_x_sd,"
+                 "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
+                 "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
+                 "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share,"
+                 "noise_read\n";
     per_curve.precision(10);
   }
   AnalysisOptions
@@ -111,6 +113,7 @@ int main(int argc, char** argv) {
         } else {
           per_curve << ",,,,,,," << t.x_c << ",,," << t.x_p << ",,,,,,,,,,,,,";
         }
+        per_curve << ',' << (reads_random_walk(r) ? "random walk" : "white");
         per_curve << '\n' << std::flush;
       }
       if (!r.accepted || !r.delay) {

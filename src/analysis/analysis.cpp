@@ -640,6 +640,9 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   const PeakValues& values = run.values;
   const auto& boot = run.boot;
   r.noise_model = run.noise;
+  const auto below_quiet = [](double white, const std::optional<Measured>& peak) {
+    return !peak || white < quiet_white_noise_share * std::abs(peak->value);
+  };
   r.bootstrap_window_low = g.xs[run.low];
   r.bootstrap_window_high = g.xs[run.high];
   r.bootstrap_replicates = boot.attempted;
@@ -682,6 +685,7 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   const auto direct =
       add_systematic(interval(values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
                      shift.x_c - shift.x_p);
+  r.quiet = below_quiet(run.noise.force.white, r.F_c) && below_quiet(run.noise.energy.white, r.E_max);
   r.delta_x_direct = measured(direct.estimate, direct.sd, r.strain_unit);
   r.bootstrap_bias = {.x_c = x_c.bias, .x_p = x_p.bias, .delta_x = direct.bias};
   return direct;
@@ -704,7 +708,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
                     const AnalysisOptions& options, AnalysisResult& r) {
   const auto& boot = run.boot;
   DelayPosterior delay;
-  const bool walk = reads_random_walk(r), walk_profile = options.uncertainty.walk_profile;
+  const bool walk = scored_as_random_walk(r), walk_profile = options.uncertainty.walk_profile;
   const auto scales_of = [&](const NoiseIntervalScales& calibrated) {
     return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : uncalibrated_scales;
   };
@@ -886,10 +890,12 @@ nlohmann::json filter_json(const AnalysisResult& r) {
   return filter;
 }
 
-// The factors an interval was sized by, the noise kind that chose them, and whether they are
-// calibrated (passed a held-out check) or 1 for want of one.
+// The factors an interval was sized by, the noise kind that chose them (quiet: the walk's, whatever
+// the whole record reads), and whether they are calibrated (passed a held-out check) or 1 for want
+// of one.
 nlohmann::json scales_json(const IntervalScales& scales, const AnalysisResult& r) {
   return {{"noise", noise_kind(r)},
+          {"quiet", r.quiet},
           {"ci68", scales.level68},
           {"ci95", scales.level95},
           {"calibrated", scales.calibrated}};
@@ -1006,7 +1012,9 @@ nlohmann::json mechanism_json(const AnalysisResult& r) {
 
 bool reads_random_walk(const AnalysisResult& r) { return r.force_walk || r.energy_walk; }
 
-std::string noise_kind(const AnalysisResult& r) { return reads_random_walk(r) ? "random walk" : "white"; }
+bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r) || r.quiet; }
+
+std::string noise_kind(const AnalysisResult& r) { return scored_as_random_walk(r) ? "random walk" : "white"; }
 
 nlohmann::json to_json(const AnalysisResult& r) {
   nlohmann::json j;

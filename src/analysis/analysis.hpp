@@ -98,7 +98,7 @@ struct AnalysisOptions {
 
 // How far δ_x's bootstrap intervals (fitted-maxima method) are stretched or shrunk about the
 // estimate, per level and per kind of noise the analysis tells apart
-// (reads_random_walk): split-conformal quantiles of the stretch each interval
+// (scored_as_random_walk): split-conformal quantiles of the stretch each interval
 // needed to reach the true δ_x (bench/interval_scales.py; docs/analysis.md, "Calibration"), rounded
 // up to four digits. A kind's factors ship only if they pass the check fixed before it was run, on
 // an untouched held-out set: each level's coverage of that kind within 63-73 % and 93-97 %, no group
@@ -121,6 +121,16 @@ struct IntervalScales {
   bool calibrated = false;
 };
 inline constexpr IntervalScales uncalibrated_scales{};
+// The kind whose factors a curve's intervals take is the one read over the whole record
+// (reads_random_walk), except on a quiet curve: one whose bootstrap window holds white noise below
+// this share of F_c and of E_max. The white factors (< 1 for δ_x) were learned where white noise of
+// 0.2-3 % sets the spread; on a quiet curve the spread comes from the walk, the peak fit and the
+// smoothing, as under a walk. On held-outs 22 and 23, 84 finite bundles (sharp power laws, most at
+// 300 rows) read as white over the whole record, whose collapse inflates the white term; all but
+// one hold white noise below 0.05 % of the peaks in the window, every white-noise curve 0.14 % or more
+// (docs/analysis.md, "Quiet curves take the walk's factors").
+inline constexpr double quiet_white_noise_share = 5e-4;
+
 // What a printed interval adds after its numbers: nothing when calibrated, else that it is not
 // (the terminal, the study's last line and the report say it alike).
 constexpr std::string_view calibration_mark(bool calibrated) { return calibrated ? "" : ", not calibrated"; }
@@ -194,6 +204,9 @@ struct AnalysisResult {
   // The noise kind read in each curve over the whole record: whether a random walk dominates it.
   // One filter serves both; its automatic choice ran on the increments where either reads so.
   bool force_walk = false, energy_walk = false;
+  // White noise in the bootstrap window below quiet_white_noise_share of both peaks: the intervals
+  // then take the random walk's factors whatever the whole record reads.
+  bool quiet = false;
   IntervalScales interval_scales;  // the factors applied to δ_x's intervals (fitted maxima)
   int derivative_window = 0;
   double force_noise = 0.0, energy_noise = 0.0;               // σ̂ of the raw curves (third differences)
@@ -243,10 +256,13 @@ std::string precursor_order(double ci95_low, double ci95_high);
 // are not errors: they come back with accepted = false and the reason.
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks = {});
 
-// Whether a random walk dominates the noise of F or of E_e: the filter was then chosen on the
-// increments, and δ_x's intervals take that kind's factors.
+// Whether a random walk dominates the noise of F or of E_e over the whole record: the filter was
+// then chosen on the increments, and the bootstrap's walk follows the step profile.
 bool reads_random_walk(const AnalysisResult& result);
-// The same in words, as written to analysis.json: "random walk" or "white".
+// The kind whose factors the intervals take: a random walk where the whole record reads so or the
+// curve is quiet (quiet_white_noise_share).
+bool scored_as_random_walk(const AnalysisResult& result);
+// That kind in words, as written to analysis.json beside the factors: "random walk" or "white".
 std::string noise_kind(const AnalysisResult& result);
 
 // Everything in the result except the grid curves, each number as {value, error, unit}; the

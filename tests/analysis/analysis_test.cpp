@@ -561,7 +561,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-21").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-22").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-23").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-24").empty());
+  EXPECT_EQ(calibration_set("held-out-24").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-25").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
