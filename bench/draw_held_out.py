@@ -6,14 +6,18 @@ Usage: draw_held_out.py SEED
 Prints two rows of `later_held_out_sets` named held-out-SEED: each parameter drawn with
 random.Random(SEED) within its family's range, rounded to two significant digits, drawn again where
 that value already names a shape of an earlier set (the test
-CalibrationSets.HeldOutSetsAreDisjointAndFoundByName checks the names). Uniform laws [a, b] have
+CalibrationSets.HeldOutSetsAreDisjointAndFoundByName checks the names). USED below lists every
+set's values; those of held-out-SEED and later (read from calibration_set.hpp's rows) are taken out
+before drawing, so a seed already drawn prints its rows again. Uniform laws [a, b] have
 a = b * U(0.03, 0.2), so ℰ's maximum is inside (a < 0.211 b); a mixture is recorded to its strong
 part's 99.9 % quantile. Held-outs 17 to 24 were drawn by this script;
 held-outs 15 and 16 by the same ranges in an earlier form.
 Standard library only.
 """
 import math
+import pathlib
 import random
+import re
 import sys
 
 # The parameters the tuning set and held-outs 1-24 already use (their shape names).
@@ -26,6 +30,20 @@ USED = {
 }
 
 
+SETS = pathlib.Path(__file__).resolve().parent.parent / "tests" / "analysis" / "calibration_set.hpp"
+ROW = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), [-\d.]+, [-\d.]+, ([-\d.]+), ([-\d.]+),')
+
+
+def drawn_from(seed):
+    """{family: values} of the rows of held-out-SEED and later in calibration_set.hpp."""
+    drawn = {family: set() for family in USED}
+    for match in ROW.finditer(SETS.read_text(encoding="utf-8")):
+        if int(match[1]) >= seed:
+            for family, value in zip(("weibull", "alpha", "sigma", "gamma"), match.groups()[1:]):
+                drawn[family].add(float(value))
+    return drawn
+
+
 def two_digits(x):
     return float(f"{x:.2g}")
 
@@ -34,6 +52,8 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: draw_held_out.py SEED")
     seed = int(sys.argv[1])
+    for family, values in drawn_from(seed).items():
+        USED[family] -= values
     rng = random.Random(seed)
 
     def draw(family, low, high):

@@ -1,0 +1,40 @@
+"""bench/draw_held_out.py: a seed already drawn prints the rows calibration_set.hpp holds for it, and a
+new seed draws no parameter an earlier set used (docs/analysis.md, "Calibration")."""
+import pathlib
+import re
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / "bench" / "draw_held_out.py"
+SETS = (ROOT / "tests" / "analysis" / "calibration_set.hpp").read_text(encoding="utf-8")
+
+
+def draw(seed):
+    return subprocess.run([sys.executable, str(SCRIPT), str(seed)], capture_output=True, text=True,
+                          check=True).stdout.splitlines()
+
+
+def rows_of(seed):
+    return [line for line in SETS.splitlines() if line.lstrip().startswith(f'{{"held-out-{seed}",')]
+
+
+def test_a_drawn_seed_prints_its_rows_again():
+    for seed in (17, 20, 23, 24):
+        assert rows_of(seed), f"held-out-{seed} has no rows in calibration_set.hpp"
+        assert draw(seed) == rows_of(seed)
+
+
+def test_a_new_seed_reuses_no_earlier_parameter():
+    number = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), [-\d.]+, [-\d.]+, ([-\d.]+), ([-\d.]+),')
+    used = [set(), set(), set(), set()]
+    for match in number.finditer(SETS):
+        for family, value in enumerate(match.groups()[1:]):
+            used[family].add(float(value))
+    latest = max(int(m[1]) for m in number.finditer(SETS))
+    fresh = draw(latest + 1)
+    assert len(fresh) == 2
+    for line in fresh:
+        values = [float(v) for v in number.match(line.strip()).groups()[1:]]
+        for family, value in enumerate(values):
+            assert value not in used[family], line
