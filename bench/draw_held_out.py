@@ -8,7 +8,9 @@ random.Random(SEED) within its family's range, rounded to two significant digits
 that value already names a shape of an earlier set (the test
 CalibrationSets.HeldOutSetsAreDisjointAndFoundByName checks the names). USED below lists every
 set's values; those of held-out-SEED and later (read from calibration_set.hpp's rows) are taken out
-before drawing, so a seed already drawn prints its rows again. Uniform laws [a, b] have
+before drawing, so a seed already drawn prints its rows again. From held-out 25 on, a uniform law
+or a mixture whose name an earlier set holds is drawn again too (held-out 24, drawn before, repeats
+held-out 18's uniform [0.18, 0.93]). Uniform laws [a, b] have
 a = b * U(0.03, 0.2), so ℰ's maximum is inside (a < 0.211 b); a mixture is recorded to its strong
 part's 99.9 % quantile. Held-outs 17 to 24 were drawn by this script;
 held-outs 15 and 16 by the same ranges in an earlier form.
@@ -31,7 +33,9 @@ USED = {
 
 
 SETS = pathlib.Path(__file__).resolve().parent.parent / "tests" / "analysis" / "calibration_set.hpp"
-ROW = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), [-\d.]+, [-\d.]+, ([-\d.]+), ([-\d.]+),')
+ROW = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), '
+                 r'\{"([^"]+)"')
+FIRST_SEED_CHECKING_EVERY_NAME = 25
 
 
 def drawn_from(seed):
@@ -39,9 +43,20 @@ def drawn_from(seed):
     drawn = {family: set() for family in USED}
     for match in ROW.finditer(SETS.read_text(encoding="utf-8")):
         if int(match[1]) >= seed:
-            for family, value in zip(("weibull", "alpha", "sigma", "gamma"), match.groups()[1:]):
-                drawn[family].add(float(value))
+            for family, group in (("weibull", 2), ("alpha", 3), ("sigma", 6), ("gamma", 7)):
+                drawn[family].add(float(match[group]))
     return drawn
+
+
+def earlier_names(seed):
+    """The uniform laws (a, b) and mixture names of the tuning set and of the rows before
+    held-out-SEED."""
+    uniforms, mixtures = {(0.2, 1.0)}, {"weibull mixture"}
+    for match in ROW.finditer(SETS.read_text(encoding="utf-8")):
+        if int(match[1]) < seed:
+            uniforms.add((float(match[4]), float(match[5])))
+            mixtures.add(match[8])
+    return uniforms, mixtures
 
 
 def two_digits(x):
@@ -54,6 +69,7 @@ def main():
     seed = int(sys.argv[1])
     for family, values in drawn_from(seed).items():
         USED[family] -= values
+    uniforms, mixtures = earlier_names(seed) if seed >= FIRST_SEED_CHECKING_EVERY_NAME else (set(), set())
     rng = random.Random(seed)
 
     def draw(family, low, high):
@@ -67,16 +83,24 @@ def main():
     for _ in range(2):
         k = draw("weibull", 1.5, 6)
         alpha = draw("alpha", -0.5, 10)
-        b = two_digits(rng.uniform(0.45, 1))
-        a = two_digits(b * rng.uniform(0.03, 0.2))
+        while True:
+            b = two_digits(rng.uniform(0.45, 1))
+            a = two_digits(b * rng.uniform(0.03, 0.2))
+            if (a, b) not in uniforms:
+                uniforms.add((a, b))
+                break
         sigma = draw("sigma", 0.2, 0.6)
         gamma = draw("gamma", 2, 8)
-        weak = two_digits(rng.uniform(0.3, 0.7))
-        mixture_k = two_digits(rng.uniform(3, 6))
-        scale = two_digits(rng.uniform(1.25, 1.6))
+        while True:
+            weak = two_digits(rng.uniform(0.3, 0.7))
+            mixture_k = two_digits(rng.uniform(3, 6))
+            scale = two_digits(rng.uniform(1.25, 1.6))
+            share = round(weak * 100)
+            name = f"weibull mixture k={mixture_k:g} {share}/{100 - share} x{scale:g}"
+            if name not in mixtures:
+                mixtures.add(name)
+                break
         x_end = two_digits(scale * math.log(1000) ** (1 / mixture_k))
-        share = round(weak * 100)
-        name = f"weibull mixture k={mixture_k:g} {share}/{100 - share} x{scale:g}"
         print(f'    {{"held-out-{seed}", {k:g}, {alpha:g}, {a:g}, {b:g}, {sigma:g}, {gamma:g}, '
               f'{{"{name}", {weak:g}, {mixture_k:g}, {scale:g}, {x_end:g}}}}},')
 

@@ -372,13 +372,41 @@ TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
 // x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
 // the factors of the noise kind read (1 where none passed a held-out check, and marked so), and written
 // to analysis.json.
+// A finite bundle of a sharp law at 300 rows (held-out 22, bundle N = 10^5, curve 7) reads as white
+// over the whole record, whose collapse inflates the white term; in the bootstrap window its white
+// noise is far below 0.05 % of the peaks, so its intervals take the random walk's factors. Under 1 %
+// white noise they stay white.
+TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
+  using namespace calibration;
+  const auto bundle =
+      analyze_curve(CalibrationCase::at(calibration_set("held-out-22"), 7).draw(noise_groups()[4]), {});
+  const auto white = analyze_curve(white_noise_curve(power_law(3), 1000, 0.01, 7), {});
+  ASSERT_TRUE(bundle.accepted) << bundle.rejection;
+  ASSERT_TRUE(white.accepted) << white.rejection;
+  EXPECT_FALSE(reads_random_walk(bundle));
+  EXPECT_TRUE(bundle.quiet);
+  EXPECT_LT(bundle.noise_model.force.white, quiet_white_noise_share * bundle.F_c->value);
+  EXPECT_TRUE(scored_as_random_walk(bundle));
+  EXPECT_EQ(bundle.interval_scales.level68, delta_interval_scales.random_walk_profile.level68);
+  EXPECT_EQ(bundle.x_c_interval->scales.level95, critical_strain_scales.random_walk_profile.level95);
+  const auto j = to_json(bundle);
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["noise"], "random walk");
+  EXPECT_TRUE(j["delta_x"]["interval_scales"]["quiet"].get<bool>());
+  EXPECT_EQ(j["filter"]["noise_read"]["force"], "white");
+  EXPECT_EQ(j["filter"]["noise_read"]["elastic_energy"], "white");
+  EXPECT_FALSE(white.quiet);
+  EXPECT_FALSE(scored_as_random_walk(white));
+  EXPECT_EQ(white.interval_scales.level68, delta_interval_scales.white_noise.level68);
+  EXPECT_FALSE(to_json(white)["delta_x"]["interval_scales"]["quiet"].get<bool>());
+}
+
 TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   using namespace calibration;
   const auto bundle = analyze_curve(finite_bundle_curve(weibull(3), 1000, 100000, 7), {});
   const auto white = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), {});
   for (const auto* r : {&bundle, &white}) {
     ASSERT_TRUE(r->accepted) << r->rejection;
-    const bool walk = reads_random_walk(*r);
+    const bool walk = scored_as_random_walk(*r);
     for (const auto& [m, interval, scales] :
          {std::tuple{*r->x_c, *r->x_c_interval, critical_strain_scales.for_noise(walk, true)},
           std::tuple{*r->x_p, *r->x_p_interval, precursor_strain_scales.for_noise(walk, true)}}) {
@@ -396,6 +424,7 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   }
   EXPECT_TRUE(reads_random_walk(bundle));
   EXPECT_FALSE(reads_random_walk(white));
+  EXPECT_FALSE(white.quiet);
   EXPECT_EQ(white.x_c_interval->scales.level68, critical_strain_scales.white_noise.level68);
   AnalysisOptions unscaled;
   unscaled.calibrated_intervals = false;
@@ -539,19 +568,26 @@ TEST(NoiseModel, MixedNoiseGroupAddsWhiteNoiseToTheForceAlone) {
 
 // The sets bench/analysis_calibration runs by name: every held-out row has its six shapes, a name
 // gives all its rows, and no shape is shared with the tuning set or another row (a held-out set that
-// repeats a shape checks nothing new); an unknown name gives no set.
+// repeats a shape checks nothing new); an unknown name gives no set. One repeat is on record:
+// held-out 24 was drawn before bench/draw_held_out.py checked uniform laws and repeats held-out 18's
+// uniform [0.18,0.93]; its check was scored with and without that shape (docs/analysis.md).
 TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   using namespace calibration;
+  const std::set<std::pair<std::string, std::string>> repeats_on_record = {
+      {"held-out-24", "uniform [0.18,0.93]"}};
   std::set<std::string> seen;
   for (const auto& s : calibration_set("all")) EXPECT_TRUE(seen.insert(s.name).second) << s.name;
   EXPECT_EQ(calibration_set("tuning").size() + calibration_set("held-out").size(), seen.size());
   std::map<std::string, std::size_t> rows_of;
+  std::set<std::pair<std::string, std::string>> repeats;
   for (const auto& set : later_held_out_sets) {
     const auto shapes = set.shapes();
     EXPECT_EQ(shapes.size(), 6u) << set.name;
     ++rows_of[set.name];
-    for (const auto& s : shapes) EXPECT_TRUE(seen.insert(s.name).second) << set.name << ": " << s.name;
+    for (const auto& s : shapes)
+      if (!seen.insert(s.name).second) repeats.insert({set.name, s.name});
   }
+  EXPECT_EQ(repeats, repeats_on_record);
   for (const auto& [name, rows] : rows_of) EXPECT_EQ(calibration_set(name).size(), 6 * rows) << name;
   EXPECT_EQ(calibration_set("held-out-16").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-17").size(), 12u);

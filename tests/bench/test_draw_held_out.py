@@ -25,16 +25,22 @@ def test_a_drawn_seed_prints_its_rows_again():
         assert draw(seed) == rows_of(seed)
 
 
-def test_a_new_seed_reuses_no_earlier_parameter():
-    number = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), [-\d.]+, [-\d.]+, ([-\d.]+), ([-\d.]+),')
-    used = [set(), set(), set(), set()]
-    for match in number.finditer(SETS):
-        for family, value in enumerate(match.groups()[1:]):
-            used[family].add(float(value))
-    latest = max(int(m[1]) for m in number.finditer(SETS))
+def test_a_new_seed_reuses_no_earlier_parameter_or_shape():
+    row = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), '
+                     r'\{"([^"]+)"')
+
+    def parts(match):
+        """Weibull k, α, σ, gamma k, the uniform law (a, b) and the mixture's name."""
+        return [float(match[2]), float(match[3]), float(match[6]), float(match[7]),
+                (float(match[4]), float(match[5])), match[8]]
+
+    used = [set() for _ in range(6)]
+    for match in row.finditer(SETS):
+        for family, value in enumerate(parts(match)):
+            used[family].add(value)
+    latest = max(int(m[1]) for m in row.finditer(SETS))
     fresh = draw(latest + 1)
     assert len(fresh) == 2
     for line in fresh:
-        values = [float(v) for v in number.match(line.strip()).groups()[1:]]
-        for family, value in enumerate(values):
+        for family, value in enumerate(parts(row.match(line.strip()))):
             assert value not in used[family], line
