@@ -192,6 +192,10 @@ struct PeakSearch {
   // Samples at either end that the fits leave out: a bootstrap window's padding, where the filter's
   // and the derivative's edge effects live.
   std::size_t margin_low = 0, margin_high = 0;
+  // Whether ℰ's search steps past the filter's edge at the record's start (past_the_filters_edge):
+  // the data's own measurement only. A replicate or the weaker filter's measurement that meets the
+  // edge fails instead (a failed replicate; no smoothing shift), as before the step existed.
+  bool past_filter_edge = false;
 };
 
 struct PeakMeasurement {
@@ -228,6 +232,23 @@ std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_
   return filtered_force.size() - 1;
 }
 
+// ℰ of a loading from rest rises from 0. Where it falls from the start of the search instead, and
+// that start lies within the filter's edge of the filtered series' first sample, the edge is showing:
+// the filtered E_e follows the padding pinned to the first noisy sample, and its slope can beat the
+// true maximum (α = 7 at 1 % noise and 5,000 rows: 1.1 against 0.55). The search then starts at
+// ℰ's first local minimum, sought within twice the filter's edge. Only the data's measurement
+// takes this step (PeakSearch::past_filter_edge): taken in the weaker filter's measurement too, it
+// measured smoothing shifts where there had been none and lost a curve on held-out 22
+// (docs/analysis.md, "The filter's edge, fourth form").
+std::size_t past_the_filters_edge(std::span<const double> rate, std::size_t first, std::size_t end,
+                                  std::size_t edge) {
+  if (first + 1 > end || rate[first + 1] >= rate[first]) return first;
+  const std::size_t limit = std::min(end, first + 2 * edge);
+  for (std::size_t i = first + 1; i < limit; ++i)
+    if (rate[i + 1] >= rate[i]) return i;
+  return first;
+}
+
 // Filter, derivative and the three maxima: the one measurement made on the data and on every
 // bootstrap replicate.
 PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double> force,
@@ -253,9 +274,13 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   // The derivative's first and last half-windows are one-sided polynomial extrapolations, whose
   // noise is several times the interior's: on a noisy curve they would win the maximum.
   const auto half = static_cast<std::size_t>(search.derivative_window / 2);
-  const std::size_t rate_first = std::max(first, std::min(half, m.phase_end));
+  const std::size_t inner_first = std::max(first, std::min(half, m.phase_end));
   const std::size_t rate_end =
-      std::max(rate_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
+      std::max(inner_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
+  const std::size_t edge = edge_samples(filter);
+  const std::size_t rate_first = search.past_filter_edge && inner_first <= half + edge
+                                     ? past_the_filters_edge(m.energy_rate, inner_first, rate_end, edge)
+                                     : inner_first;
   const auto rate_xs = xs.subspan(rate_first, rate_end - rate_first + 1);
   const auto rate_ys = std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1);
   m.rate = fit_peak(rate_xs, rate_ys, 0.0, 1.0, search.peak);
@@ -388,6 +413,7 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
   if (options.walk_profile) add_walk_profiles(run.noise, xs, force, run.low, run.high);
   const auto window_x = xs.subspan(run.low, count);
   PeakSearch replicate_search = search;
+  replicate_search.past_filter_edge = false;
   replicate_search.margin_low = core_low - run.low;
   replicate_search.margin_high = run.high - core_high;
   const PeakMeasure measure = [&](std::span<const double> f, std::span<const double> e) {
@@ -409,6 +435,7 @@ PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> f
   PeakValues shift{};
   if (search.filter.kind != FilterKind::butterworth) return shift;
   PeakSearch weaker = search;
+  weaker.past_filter_edge = false;
   weaker.filter.cutoff = std::min(0.95, std::sqrt(2.0) * search.filter.cutoff);
   weaker.derivative_window = derivative_window_for(weaker.filter, requested_derivative_window, xs.size());
   if (const auto other = peak_values(measure_peaks(xs, force, energy, weaker), false)) {
@@ -811,8 +838,12 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const Grid& g = *grid;
   choose_filter(g, options.filter, options.random_walk_smoothing_share, r);  // 2
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
-  const PeakSearch search{r.filter, derivative_window_for(r.filter, options.derivative_window, g.size()),
-                          options.peak, options.acceptance.collapse_fraction};
+  const PeakSearch search{
+      .filter = r.filter,
+      .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
+      .peak = options.peak,
+      .collapse_fraction = options.acceptance.collapse_fraction,
+      .past_filter_edge = true};
   r.derivative_window = search.derivative_window;
   const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
   record_peaks(measurement, g, r);

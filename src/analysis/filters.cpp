@@ -293,6 +293,18 @@ void limit_smoothing(FilterSettings& settings, double longest_period) {
                  std::min(settings.savgol_window, odd_at_least(static_cast<int>(longest_period) - 1)));
 }
 
+std::size_t edge_samples(const FilterSettings& settings) {
+  switch (settings.kind) {
+    case FilterKind::butterworth:
+      return settings.cutoff > 0.0 ? static_cast<std::size_t>(std::ceil(1.0 / settings.cutoff)) : 0;
+    case FilterKind::savitzky_golay:
+      return static_cast<std::size_t>(std::max(settings.savgol_window, 0) / 2);
+    case FilterKind::none:
+      break;
+  }
+  return 0;
+}
+
 std::size_t minimum_samples(const FilterSettings& settings) {
   switch (settings.kind) {
     case FilterKind::butterworth: {

@@ -93,6 +93,12 @@ bool chooses_own_strength(const FilterSettings& settings);
 // width set by how long it was recorded, not by its features.
 void limit_smoothing(FilterSettings& settings, double longest_period);
 
+// Samples at each end of the data where the filter's output still carries its edge: a
+// Butterworth's response to the padding pinned to the first (last) noisy sample decays over about
+// 1/cutoff samples; Savitzky–Golay's end polynomial spans half its window; none has no edge. The
+// peak search uses it to bound how far an edge transient of ℰ is followed (analysis.cpp).
+std::size_t edge_samples(const FilterSettings& settings);
+
 // Minimum number of samples the filter needs.
 std::size_t minimum_samples(const FilterSettings& settings);
 
