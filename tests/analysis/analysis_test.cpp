@@ -318,6 +318,41 @@ TEST(AnalyzeCurve, ShiftL1WithANonPositiveScaleIsRejected) {
   EXPECT_NE(r.rejection.find("no positive scale c"), std::string::npos) << r.rejection;
 }
 
+// α = 7 under 1 % white noise, 5000 rows (held-out 8's curve 31): the Butterworth filter (cutoff
+// 0.017) pins the filtered E_e to its noisy first sample, and over the next ~1/cutoff samples its
+// slope reached 1.1, twice ℰ's true maximum (0.55 at x = 0.62): the curve was rejected with "the
+// maximum lies at the start of the data". The data's search now starts past that falling edge.
+TEST(AnalyzeCurve, TheFiltersEdgeDoesNotWinTheEnergyRateMaximum) {
+  using namespace calibration;
+  const auto set = calibration_set("held-out-8");
+  const auto curve_case = CalibrationCase::at(set, 31);
+  ASSERT_EQ(curve_case.shape.name, "powerlaw alpha=7");
+  ASSERT_EQ(curve_case.rows, 5000u);
+  const auto t = truth(curve_case.shape);
+  const auto r = analyze_curve(curve_case.draw({"white 1 %", 0.01, 0}), {});
+  ASSERT_TRUE(r.accepted) << r.rejection;
+  EXPECT_GT(r.x_p->value, 0.5);
+  EXPECT_LE(r.delay->ci95_low, t.delta());
+  EXPECT_GE(r.delay->ci95_high, t.delta());
+}
+
+// Held-out 22's curve 194 (uniform [0.083, 0.98], white 3 %, 1000 rows): the weaker filter's
+// measurement fails at the record's start, so it adds no smoothing shift. When it stepped past the
+// edge as the data's does (the third form), it found x_p 0.151 away and δ_x's sd went 0.045 ->
+// 0.156: the curve was rejected as too uncertain. Only the data's measurement steps past the edge.
+TEST(AnalyzeCurve, OnlyTheDatasMeasurementStepsPastTheFiltersEdge) {
+  using namespace calibration;
+  const auto set = calibration_set("held-out-22");
+  const auto curve_case = CalibrationCase::at(set, 194);
+  ASSERT_EQ(curve_case.shape.name, "uniform [0.083,0.98]");
+  ASSERT_EQ(curve_case.rows, 1000u);
+  const auto r = analyze_curve(curve_case.draw(noise_groups()[2]), {});
+  ASSERT_TRUE(r.accepted) << r.rejection;
+  EXPECT_EQ(r.smoothing_shift.x_p, 0.0);
+  EXPECT_LT(r.delay->sd, 0.06);
+  EXPECT_NEAR(r.x_p->value, truth(curve_case.shape).x_p, 0.01);
+}
+
 TEST(AnalyzeCurve, TooFewRowsIsBadInput) {
   auto c = power_law_curve(0.0, 10);
   try {
