@@ -46,6 +46,18 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
     fmt::print(out, " window {}, order {}", r.filter.savgol_window, r.filter.savgol_order);
   }
   fmt::print(out, "; derivative window {} samples\n", r.derivative_window);
+  const auto kind = [](bool walk) { return walk ? "random walk" : "white"; };
+  fmt::print(out, "  noise       F {}, E_e {} (over the whole record)", kind(r.force_walk),
+             kind(r.energy_walk));
+  if (r.x_c_interval) {
+    fmt::print(out, "; intervals sized for {}{}",
+               analysis::scored_as_random_walk(r) ? "a random walk" : "white noise",
+               r.quiet && !analysis::reads_random_walk(r)
+                   ? fmt::format(" (quiet: white noise below {:g} % of the peaks)",
+                                 100.0 * analysis::quiet_white_noise_share)
+                   : "");
+  }
+  fmt::print(out, "\n");
   const auto line = [out](const char* name, const std::optional<analysis::Measured>& m) {
     fmt::print(out, "  {:<11} {}\n", name, m ? with_error(*m) : std::string("not found"));
   };

@@ -33,6 +33,25 @@ void write_curve(const std::filesystem::path& file, const Curve& c, const std::s
 
 std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
+// White noise at 10^-6 (0.0004 % of F's peak, 0.25) reads as white over the whole record and is
+// quiet: the terminal says whose factors its intervals take and why, as analysis.json does.
+TEST(AnalyzeCli, AQuietCurvesIntervalsSayTheyAreSizedForARandomWalk) {
+  TempDir dir;
+  auto c = testing::power_law_curve(0.0, 2001);
+  testing::add_noise(c, 1e-6, 1e-7, 5);
+  write_curve(dir / "curve.csv", c, "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("analyze " + quoted(dir / "curve.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(
+      r.out.find("noise       F white, E_e white (over the whole record); intervals sized for a random walk "
+                 "(quiet: white noise below 0.05 % of the peaks)\n"),
+      std::string::npos)
+      << r.out;
+  const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  EXPECT_TRUE(j["x_c"]["interval_scales"]["quiet"].get<bool>());
+  EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], "random walk");
+}
+
 TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   TempDir dir;
   auto c = testing::power_law_curve(0.0, 2001);
@@ -51,6 +70,10 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   EXPECT_GT(j["delta_x"]["error"].get<double>(), 0.0);
   EXPECT_EQ(j["delta_x"]["method"], "fitted-maxima");
   // White noise: the intervals carry the white-noise factors, and the 95 % one holds the 68 % one.
+  EXPECT_NE(
+      r.out.find("noise       F white, E_e white (over the whole record); intervals sized for white noise\n"),
+      std::string::npos)
+      << r.out;
   EXPECT_EQ(j["delta_x"]["interval_scales"]["noise"], "white");
   EXPECT_EQ(j["delta_x"]["interval_scales"]["ci68"].get<double>(), delta_interval_scales.white_noise.level68);
   EXPECT_EQ(j["delta_x"]["interval_scales"]["ci95"].get<double>(), delta_interval_scales.white_noise.level95);
