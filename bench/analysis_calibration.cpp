@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
         } else {
           per_curve << ",,,,,,," << t.x_c << ",,," << t.x_p << ",,,,,,,,,,,,,";
         }
-        per_curve << ',' << (reads_random_walk(r) ? "random walk" : "white");
+        per_curve << ',' << noise_name(reads_random_walk(r));
         per_curve << '\n' << std::flush;
       }
       if (!r.accepted || !r.delay) {

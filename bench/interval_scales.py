@@ -3,7 +3,8 @@
 "Calibration").
 
 Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p] [--use KIND=S68,S95 ...]
-                          [--skip-shape NAME ...] [--check CHECK.csv ...]
+                          [--skip-shape NAME ...] [--kind-column COLUMN] [--quiet-below SHARE]
+                          [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -17,6 +18,12 @@ the learned ones (what src/analysis/analysis.hpp applies where a learned factor 
 case outside the calibration's domain, documented on its own). As in the analysis, the 95 % interval
 is never inside the 68 % one: a curve counts as covered at
 95 % when either scaled interval reaches the truth.
+`--kind-column noise_read` takes each curve's kind from that column instead of `noise` (from held-out
+24 on the files write both: `noise` is the kind whose factors the analysis applies, `noise_read` the
+whole record's reading). `--quiet-below 5e-4` scores as a random walk every accepted curve whose
+white noise in the bootstrap window is below that share of both peaks (`force_white_share`,
+`energy_white_share`): the analysis's quiet reading (quiet_white_noise_share), applied to files
+written before it.
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -31,6 +38,8 @@ LEVELS = (("68", 0.6826894921370859), ("95", 0.95))
 
 
 QUANTITY = "delta_x"  # set by --quantity
+KIND_COLUMN = "noise"  # set by --kind-column
+QUIET_BELOW = None  # set by --quiet-below
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -64,10 +73,26 @@ def read(paths, skipped=()):
                 if missing:
                     sys.exit(f"{path}: no column {', '.join(missing)}; give the per-curve file that "
                              "bench/analysis_calibration writes as its third argument")
-                rows += [dict(r, source=path) for r in table if r.get("shape") not in skipped]
+                if KIND_COLUMN not in (table.fieldnames or []):
+                    sys.exit(f"{path}: no column {KIND_COLUMN}; --kind-column names a column the file has "
+                             "(noise_read is written from held-out 24 on)")
+                rows += [dict(r, source=path, noise=kind_of(r)) for r in table if r.get("shape") not in skipped]
         except OSError as e:
             sys.exit(f"{path}: cannot read it ({e.strerror}); name an existing per-curve file")
     return rows
+
+
+def kind_of(row):
+    """The kind a curve is scored as: its KIND_COLUMN, or a random walk where --quiet-below finds it
+    quiet (a missing share, as for a curve without E_max, is not quiet)."""
+    if QUIET_BELOW is not None and row.get("accepted") == "1":
+        try:
+            shares = [float(row["force_white_share"]), float(row["energy_white_share"])]
+        except (KeyError, ValueError):
+            shares = None
+        if shares is not None and max(shares) < QUIET_BELOW:
+            return "random walk"
+    return row[KIND_COLUMN]
 
 
 def parse_use(text):
@@ -156,7 +181,7 @@ def verdict(rows, scales):
 
 
 def main(argv):
-    global QUANTITY
+    global QUANTITY, KIND_COLUMN, QUIET_BELOW
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -169,6 +194,15 @@ def main(argv):
             QUANTITY = next(args, "")
             if QUANTITY not in ("delta_x", "x_c", "x_p"):
                 sys.exit(f"interval_scales.py: --quantity '{QUANTITY}': name delta_x, x_c or x_p")
+        elif arg == "--kind-column":
+            KIND_COLUMN = next(args, "")
+            if not KIND_COLUMN:
+                sys.exit("interval_scales.py: --kind-column needs a column name, e.g. --kind-column noise_read")
+        elif arg == "--quiet-below":
+            try:
+                QUIET_BELOW = float(next(args, ""))
+            except ValueError:
+                sys.exit("interval_scales.py: --quiet-below needs a share of the peaks, e.g. --quiet-below 5e-4")
         elif arg == "--use":
             kind, by_level = parse_use(next(args, ""))
             given[kind] = by_level

@@ -278,7 +278,7 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   const std::size_t rate_end =
       std::max(inner_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
   const std::size_t edge = edge_samples(filter);
-  const std::size_t rate_first = search.past_filter_edge && inner_first <= half + edge
+  const std::size_t rate_first = search.past_filter_edge
                                      ? past_the_filters_edge(m.energy_rate, inner_first, rate_end, edge)
                                      : inner_first;
   const auto rate_xs = xs.subspan(rate_first, rate_end - rate_first + 1);
@@ -667,8 +667,9 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   const PeakValues& values = run.values;
   const auto& boot = run.boot;
   r.noise_model = run.noise;
+  // Quiet needs both peaks: a curve without E_max was in no check of the reading.
   const auto below_quiet = [](double white, const std::optional<Measured>& peak) {
-    return !peak || white < quiet_white_noise_share * std::abs(peak->value);
+    return peak && white < quiet_white_noise_share * std::abs(peak->value);
   };
   r.bootstrap_window_low = g.xs[run.low];
   r.bootstrap_window_high = g.xs[run.high];
@@ -851,7 +852,9 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // 6–7. A parametric bootstrap of the measurement (bootstrap.hpp) over the span of the three fits,
   // padded, gives every number's uncertainty and δ_x's. The walk's step profile serves the curves
   // read as a random walk, whose interval factors were learned with it; a curve read as white keeps
-  // the stationary steps its white factors were learned with (docs/analysis.md, "Rule 4").
+  // the stationary steps its white factors were learned with (docs/analysis.md, "Rule 4"). A quiet
+  // curve read as white keeps them too and takes the walk's factors (scored_as_random_walk): so it
+  // was scored on held-out 24.
   BootstrapOptions uncertainty = options.uncertainty;
   uncertainty.walk_profile = uncertainty.walk_profile && reads_random_walk(r);
   if (const auto run = bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, uncertainty)) {
@@ -901,13 +904,12 @@ namespace {
 
 // The filter actually used, with its settings.
 nlohmann::json filter_json(const AnalysisResult& r) {
-  nlohmann::json filter = {{"kind", to_string(r.filter.kind)},
-                           {"applied_to", {"force", "elastic_energy"}},
-                           {"zero_phase", true},
-                           {"discrepancy", r.filter.discrepancy},
-                           {"noise_read",
-                            {{"force", r.force_walk ? "random walk" : "white"},
-                             {"elastic_energy", r.energy_walk ? "random walk" : "white"}}}};
+  nlohmann::json filter = {
+      {"kind", to_string(r.filter.kind)},
+      {"applied_to", {"force", "elastic_energy"}},
+      {"zero_phase", true},
+      {"discrepancy", r.filter.discrepancy},
+      {"noise_read", {{"force", noise_name(r.force_walk)}, {"elastic_energy", noise_name(r.energy_walk)}}}};
   if (r.filter.kind == FilterKind::butterworth) {
     filter["order"] = r.filter.butterworth_order;
     filter["cutoff_nyquist"] = r.filter.cutoff;
@@ -1045,7 +1047,9 @@ bool reads_random_walk(const AnalysisResult& r) { return r.force_walk || r.energ
 
 bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r) || r.quiet; }
 
-std::string noise_kind(const AnalysisResult& r) { return scored_as_random_walk(r) ? "random walk" : "white"; }
+std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }
+
+std::string noise_kind(const AnalysisResult& r) { return std::string(noise_name(scored_as_random_walk(r))); }
 
 nlohmann::json to_json(const AnalysisResult& r) {
   nlohmann::json j;

@@ -46,9 +46,8 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
     fmt::print(out, " window {}, order {}", r.filter.savgol_window, r.filter.savgol_order);
   }
   fmt::print(out, "; derivative window {} samples\n", r.derivative_window);
-  const auto kind = [](bool walk) { return walk ? "random walk" : "white"; };
-  fmt::print(out, "  noise       F {}, E_e {} (over the whole record)", kind(r.force_walk),
-             kind(r.energy_walk));
+  fmt::print(out, "  noise       F {}, E_e {} (over the whole record)", analysis::noise_name(r.force_walk),
+             analysis::noise_name(r.energy_walk));
   if (r.x_c_interval) {
     fmt::print(out, "; intervals sized for {}{}",
                analysis::scored_as_random_walk(r) ? "a random walk" : "white noise",

@@ -404,9 +404,6 @@ TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
   EXPECT_LT(r.delta_x->error, r.x_c->error);
 }
 
-// x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
-// the factors of the noise kind read (1 where none passed a held-out check, and marked so), and written
-// to analysis.json.
 // A finite bundle of a sharp law at 300 rows (held-out 22, bundle N = 10^5, curve 7) reads as white
 // over the whole record, whose collapse inflates the white term; in the bootstrap window its white
 // noise is far below 0.05 % of the peaks, so its intervals take the random walk's factors. Under 1 %
@@ -421,6 +418,10 @@ TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
   EXPECT_FALSE(reads_random_walk(bundle));
   EXPECT_TRUE(bundle.quiet);
   EXPECT_LT(bundle.noise_model.force.white, quiet_white_noise_share * bundle.F_c->value);
+  EXPECT_LT(bundle.noise_model.energy.white, quiet_white_noise_share * bundle.E_max->value);
+  // The bootstrap follows the whole record's reading: stationary steps, as the white factors were learned.
+  EXPECT_TRUE(bundle.noise_model.force.walk_profile.empty());
+  EXPECT_TRUE(bundle.noise_model.energy.walk_profile.empty());
   EXPECT_TRUE(scored_as_random_walk(bundle));
   EXPECT_EQ(bundle.interval_scales.level68, delta_interval_scales.random_walk_profile.level68);
   EXPECT_EQ(bundle.x_c_interval->scales.level95, critical_strain_scales.random_walk_profile.level95);
@@ -435,6 +436,9 @@ TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
   EXPECT_FALSE(to_json(white)["delta_x"]["interval_scales"]["quiet"].get<bool>());
 }
 
+// x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
+// the factors of the noise kind scored (1 where none passed a held-out check, and marked so), and written
+// to analysis.json.
 TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   using namespace calibration;
   const auto bundle = analyze_curve(finite_bundle_curve(weibull(3), 1000, 100000, 7), {});

@@ -1,7 +1,7 @@
 """bench/draw_held_out.py: a seed already drawn prints the rows calibration_set.hpp holds for it, and a
 new seed draws no parameter an earlier set used (docs/analysis.md, "Calibration")."""
+import importlib.util
 import pathlib
-import re
 import subprocess
 import sys
 
@@ -25,22 +25,39 @@ def test_a_drawn_seed_prints_its_rows_again():
         assert draw(seed) == rows_of(seed)
 
 
-def test_a_new_seed_reuses_no_earlier_parameter_or_shape():
-    row = re.compile(r'\{"held-out-(\d+)", ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), ([-\d.]+), '
-                     r'\{"([^"]+)"')
+def load():
+    spec = importlib.util.spec_from_file_location("draw_held_out", SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
-    def parts(match):
-        """Weibull k, α, σ, gamma k, the uniform law (a, b) and the mixture's name."""
-        return [float(match[2]), float(match[3]), float(match[6]), float(match[7]),
-                (float(match[4]), float(match[5])), match[8]]
 
+def parts(match):
+    """Weibull k, α, σ, gamma k, the uniform law (a, b) and the mixture's name of a row."""
+    return [float(match[2]), float(match[3]), float(match[6]), float(match[7]), (float(match[4]), float(match[5])),
+            match[8]]
+
+
+def test_earlier_names_are_those_of_the_sets_before_the_seed():
+    uniforms, mixtures = load().earlier_names(25)
+    assert (0.2, 1.0) in uniforms and "weibull mixture" in mixtures  # the tuning set's
+    assert (0.18, 0.93) in uniforms  # held-out 18's, repeated by held-out 24
+    assert "weibull mixture k=5.7 45/55 x1.6" in mixtures  # held-out 24's
+    uniforms, mixtures = load().earlier_names(18)
+    assert (0.18, 0.93) not in uniforms
+    assert "weibull mixture k=5.7 45/55 x1.6" not in mixtures
+
+
+def test_new_seeds_reuse_no_earlier_parameter_or_shape():
+    row = load().ROW
     used = [set() for _ in range(6)]
     for match in row.finditer(SETS):
         for family, value in enumerate(parts(match)):
             used[family].add(value)
     latest = max(int(m[1]) for m in row.finditer(SETS))
-    fresh = draw(latest + 1)
-    assert len(fresh) == 2
-    for line in fresh:
-        for family, value in enumerate(parts(row.match(line.strip()))):
-            assert value not in used[family], line
+    for seed in range(latest + 1, latest + 41):
+        fresh = draw(seed)
+        assert len(fresh) == 2
+        for line in fresh:
+            for family, value in enumerate(parts(row.match(line.strip()))):
+                assert value not in used[family], line

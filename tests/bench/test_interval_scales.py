@@ -72,3 +72,24 @@ def test_a_factor_for_a_kind_of_noise_the_files_do_not_have_is_refused(tmp_path)
     assert result.returncode != 0
     assert "--use 'white noise=...': no curve of that kind of noise" in result.stderr
     assert run(learn, "--use", "random walk=1,1").returncode == 0
+
+
+def test_quiet_curves_and_another_kind_column_choose_the_kind_scored(tmp_path):
+    """--quiet-below scores curves with white noise below the share of both peaks as a random walk
+    (not those with a missing share); --kind-column reads the kind from another column."""
+    rows = rows_with_scores([0.5] * 6, [0.5] * 6, noise="white")
+    for row, (force, energy) in zip(rows, [("1e-5", "2e-5")] * 3 + [("1e-5", "")] + [("3e-3", "1e-5")] * 2):
+        row.update(force_white_share=force, energy_white_share=energy, noise_read="random walk")
+    path = tmp_path / "shares.csv"
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        table = csv.DictWriter(f, fieldnames=COLUMNS + ["force_white_share", "energy_white_share", "noise_read"])
+        table.writeheader()
+        table.writerows(rows)
+    quiet = run(str(path), "--quiet-below", "5e-4")
+    assert quiet.returncode == 0, quiet.stderr
+    assert "random walk noise (3 accepted curves)" in quiet.stdout
+    assert "white noise (3 accepted curves)" in quiet.stdout
+    read = run(str(path), "--kind-column", "noise_read")
+    assert "random walk noise (6 accepted curves)" in read.stdout and "white noise" not in read.stdout
+    missing = run(str(path), "--kind-column", "no_such_column")
+    assert missing.returncode != 0 and "no column no_such_column" in missing.stderr
