@@ -38,14 +38,15 @@ def parts(match):
             match[8]]
 
 
-def test_earlier_names_are_those_of_the_sets_before_the_seed():
-    uniforms, mixtures = load().earlier_names(25)
-    assert (0.2, 1.0) in uniforms and "weibull mixture" in mixtures  # the tuning set's
-    assert (0.18, 0.93) in uniforms  # held-out 18's, repeated by held-out 24
-    assert "weibull mixture k=5.7 45/55 x1.6" in mixtures  # held-out 24's
-    uniforms, mixtures = load().earlier_names(18)
-    assert (0.18, 0.93) not in uniforms
-    assert "weibull mixture k=5.7 45/55 x1.6" not in mixtures
+def test_earlier_shapes_are_the_tuning_sets_and_those_of_the_rows_before_the_seed():
+    used = load().earlier_shapes(25)
+    assert {2.0, 3.0, 5.0} <= used["weibull"] and (0.2, 1.0) in used["uniform"]  # the tuning set's
+    assert "weibull mixture" in used["mixture"]
+    assert (0.18, 0.93) in used["uniform"]  # held-out 18's, repeated by held-out 24
+    assert 4.1 in used["alpha"] and "weibull mixture k=5.7 45/55 x1.6" in used["mixture"]  # held-out 24's
+    used = load().earlier_shapes(18)
+    assert (0.18, 0.93) not in used["uniform"]
+    assert 4.1 not in used["alpha"] and "weibull mixture k=5.7 45/55 x1.6" not in used["mixture"]
 
 
 def test_new_seeds_reuse_no_earlier_parameter_or_shape():
