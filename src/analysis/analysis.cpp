@@ -660,6 +660,15 @@ void check_peaks(const Grid& g, std::size_t phase, const AcceptanceRules& rules,
   }
 }
 
+// Whether the bootstrap window's white noise lies below quiet_white_noise_share of F_c and of E_max.
+// Quiet needs both peaks: a curve without E_max was in no check of the reading.
+bool is_quiet(const NoiseModel& noise, const AnalysisResult& r) {
+  const auto below = [](double white, const std::optional<Measured>& peak) {
+    return peak && white < quiet_white_noise_share * std::abs(peak->value);
+  };
+  return below(noise.force.white, r.F_c) && below(noise.energy.white, r.E_max);
+}
+
 // 6. Every number's uncertainty from the bootstrap's replicates, widened by the smoothing shift
 // for the strains. Returns δ_x of the fitted maxima with its interval.
 BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const PeakSearch& search,
@@ -667,10 +676,6 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   const PeakValues& values = run.values;
   const auto& boot = run.boot;
   r.noise_model = run.noise;
-  // Quiet needs both peaks: a curve without E_max was in no check of the reading.
-  const auto below_quiet = [](double white, const std::optional<Measured>& peak) {
-    return peak && white < quiet_white_noise_share * std::abs(peak->value);
-  };
   r.bootstrap_window_low = g.xs[run.low];
   r.bootstrap_window_high = g.xs[run.high];
   r.bootstrap_replicates = boot.attempted;
@@ -713,7 +718,7 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   const auto direct =
       add_systematic(interval(values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
                      shift.x_c - shift.x_p);
-  r.quiet = below_quiet(run.noise.force.white, r.F_c) && below_quiet(run.noise.energy.white, r.E_max);
+  r.quiet = is_quiet(run.noise, r);
   r.delta_x_direct = measured(direct.estimate, direct.sd, r.strain_unit);
   r.bootstrap_bias = {.x_c = x_c.bias, .x_p = x_p.bias, .delta_x = direct.bias};
   return direct;

@@ -318,18 +318,28 @@ TEST(AnalyzeCurve, ShiftL1WithANonPositiveScaleIsRejected) {
   EXPECT_NE(r.rejection.find("no positive scale c"), std::string::npos) << r.rejection;
 }
 
+// One curve of a calibration set, as bench/analysis_calibration draws it, analysed with default
+// options, with the truth of its shape; the test names the shape and rows it was written for.
+struct AnalysedCase {
+  AnalysisResult result;
+  calibration::Truth truth;
+};
+AnalysedCase analyse_set_curve(const std::string& set_name, int k, const calibration::NoiseGroup& group,
+                               std::string_view shape, std::size_t rows) {
+  const auto set = calibration::calibration_set(set_name);
+  const auto curve_case = calibration::CalibrationCase::at(set, k);
+  EXPECT_EQ(curve_case.shape.name, shape) << set_name << " curve " << k;
+  EXPECT_EQ(curve_case.rows, rows) << set_name << " curve " << k;
+  return {analyze_curve(curve_case.draw(group), {}), calibration::truth(curve_case.shape)};
+}
+
 // α = 7 under 1 % white noise, 5000 rows (held-out 8's curve 31): the Butterworth filter (cutoff
 // 0.017) pins the filtered E_e to its noisy first sample, and over the next ~1/cutoff samples its
 // slope reached 1.1, twice ℰ's true maximum (0.55 at x = 0.62): the curve was rejected with "the
 // maximum lies at the start of the data". The data's search now starts past that falling edge.
 TEST(AnalyzeCurve, TheFiltersEdgeDoesNotWinTheEnergyRateMaximum) {
-  using namespace calibration;
-  const auto set = calibration_set("held-out-8");
-  const auto curve_case = CalibrationCase::at(set, 31);
-  ASSERT_EQ(curve_case.shape.name, "powerlaw alpha=7");
-  ASSERT_EQ(curve_case.rows, 5000u);
-  const auto t = truth(curve_case.shape);
-  const auto r = analyze_curve(curve_case.draw({"white 1 %", 0.01, 0}), {});
+  const auto [r, t] =
+      analyse_set_curve("held-out-8", 31, calibration::noise_groups()[1], "powerlaw alpha=7", 5000);
   ASSERT_TRUE(r.accepted) << r.rejection;
   EXPECT_GT(r.x_p->value, 0.5);
   EXPECT_LE(r.delay->ci95_low, t.delta());
@@ -341,16 +351,12 @@ TEST(AnalyzeCurve, TheFiltersEdgeDoesNotWinTheEnergyRateMaximum) {
 // edge as the data's does (the third form), it found x_p 0.151 away and δ_x's sd went 0.045 ->
 // 0.156: the curve was rejected as too uncertain. Only the data's measurement steps past the edge.
 TEST(AnalyzeCurve, OnlyTheDatasMeasurementStepsPastTheFiltersEdge) {
-  using namespace calibration;
-  const auto set = calibration_set("held-out-22");
-  const auto curve_case = CalibrationCase::at(set, 194);
-  ASSERT_EQ(curve_case.shape.name, "uniform [0.083,0.98]");
-  ASSERT_EQ(curve_case.rows, 1000u);
-  const auto r = analyze_curve(curve_case.draw(noise_groups()[2]), {});
+  const auto [r, t] =
+      analyse_set_curve("held-out-22", 194, calibration::noise_groups()[2], "uniform [0.083,0.98]", 1000);
   ASSERT_TRUE(r.accepted) << r.rejection;
   EXPECT_EQ(r.smoothing_shift.x_p, 0.0);
   EXPECT_LT(r.delay->sd, 0.06);
-  EXPECT_NEAR(r.x_p->value, truth(curve_case.shape).x_p, 0.01);
+  EXPECT_NEAR(r.x_p->value, t.x_p, 0.01);
 }
 
 TEST(AnalyzeCurve, TooFewRowsIsBadInput) {
@@ -411,7 +417,7 @@ TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
 TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
   using namespace calibration;
   const auto bundle =
-      analyze_curve(CalibrationCase::at(calibration_set("held-out-22"), 7).draw(noise_groups()[4]), {});
+      analyse_set_curve("held-out-22", 7, noise_groups()[4], "powerlaw alpha=8.8", 300).result;
   const auto white = analyze_curve(white_noise_curve(power_law(3), 1000, 0.01, 7), {});
   ASSERT_TRUE(bundle.accepted) << bundle.rejection;
   ASSERT_TRUE(white.accepted) << white.rejection;
