@@ -3,21 +3,21 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-24|all]
-// [per-curve CSV] [all|white|bundle|mixed: the noise groups, default all; mixed: bundles whose F also
-// carries white noise, as DEM curves do] [walk-profile (the default): random-walk steps that follow
-// the curve (BootstrapOptions::walk_profile) | stationary-walk: one step along the curve].
-// The per-curve file holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak
-// fits' own errors (the systematic terms in x_c's and x_p's sd) and the noise the analysis measured on
-// F and E_e as a share of their maxima, with its white and random-walk parts (per sample and per step)
-// apart (files before held-out 22 lack the first two columns, before held-out-22-edge the other four).
-// `noise` is the kind whose factors the intervals take (scored_as_random_walk), `noise_read` the kind
-// read over the whole record (reads_random_walk; from held-out 24 on; before, `noise` was that), from
-// which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on
-// a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run
-// once for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6
-// checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind reading,
-// held-out 9 and 10 the energy-rate search's edge).
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-25|all]
+// [per-curve CSV] [all|white|bundle|mixed|white-between: the noise groups, default all; mixed: bundles
+// whose F also carries white noise, as DEM curves do; white-between: white noise at 0.5 and 2 %]
+// [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
+// stationary-walk: one step along the curve]. The per-curve file holds each curve's truth, estimates,
+// intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
+// and the noise the analysis measured on F and E_e as a share of their maxima, with its white and random-walk
+// parts (per sample and per step) apart (files before held-out 22 lack the first two columns, before
+// held-out-22-edge the other four). `noise` is the kind whose factors the intervals take
+// (scored_as_random_walk), `noise_read` the kind read over the whole record (reads_random_walk; from held-out
+// 24 on; before, `noise` was that), from which bench/interval_scales.py learns the per-level interval scales
+// (on the tuning set) and checks them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed
+// before the change it checks and run once for it; docs/analysis.md, "Calibration", lists them in the order
+// they were used (held-out 6 checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a
+// noise-kind reading, held-out 9 and 10 the energy-rate search's edge).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-24, all\n",
+                 "held-out-25, all\n",
                  which.c_str());
     return 2;
   }
@@ -49,9 +49,11 @@ int main(int argc, char** argv) {
         variant.c_str());
     return 2;
   }
-  if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed") {
+  if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed" &&
+      kinds != "white-between") {
     std::fprintf(stderr,
-                 "analysis_calibration: unknown noise groups '%s'; name all, white, bundle or mixed\n",
+                 "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed or "
+                 "white-between\n",
                  kinds.c_str());
     return 2;
   }
@@ -79,7 +81,10 @@ int main(int argc, char** argv) {
       "| group | curves | accepted | δ_x 68 %% | δ_x 95 %% | x_c 95 %% | x_p 95 %% | δ_x mean rel. error | "
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const auto& g : kinds == "mixed" ? mixed_noise_groups() : noise_groups()) {
+  const auto groups = kinds == "mixed"           ? mixed_noise_groups()
+                      : kinds == "white-between" ? between_noise_groups()
+                                                 : noise_groups();
+  for (const auto& g : groups) {
     if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
     int accepted = 0, c68 = 0, c95 = 0, xc95 = 0, xp95 = 0, l1_count = 0;
     double rel = 0.0, sq = 0.0, sq_l1 = 0.0;
