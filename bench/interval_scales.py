@@ -4,7 +4,7 @@
 
 Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p] [--use KIND=S68,S95 ...]
                           [--skip-shape NAME ...] [--kind-column COLUMN] [--quiet-below SHARE]
-                          [--check CHECK.csv ...]
+                          [--white-by-level] [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -24,6 +24,11 @@ whole record's reading). `--quiet-below 5e-4` scores as a random walk every acce
 white noise in the bootstrap window is below that share of both peaks (`force_white_share`,
 `energy_white_share`): the analysis's quiet reading (quiet_white_noise_share), applied to files
 written before it.
+`--white-by-level` learns the white kind's scales per white group ("white 1 %": anchored at a share
+of 0.01) and applies them to each curve through its measured white noise in E_e
+(`energy_white_share`): interpolated linearly in the log of that share between the anchors, held at
+the end anchors beyond them (src/analysis/analysis.hpp, precursor_white_scales, for x_p).
+`--use "white@0.002=0.6294,0.8308"` gives one such anchor (several make the model).
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -40,6 +45,7 @@ LEVELS = (("68", 0.6826894921370859), ("95", 0.95))
 QUANTITY = "delta_x"  # set by --quantity
 KIND_COLUMN = "noise"  # set by --kind-column
 QUIET_BELOW = None  # set by --quiet-below
+WHITE_BY_LEVEL = False  # set by --white-by-level
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -96,13 +102,50 @@ def kind_of(row):
 
 
 def parse_use(text):
-    """KIND=S68,S95 as (kind, {level: factor})."""
+    """KIND=S68,S95 as (kind, None, {level: factor}); KIND@SHARE=S68,S95 as (kind, share, {level: factor}),
+    one anchor of a kind whose factors follow the measured noise level."""
     kind, _, factors = text.partition("=")
+    kind, at, share = kind.partition("@")
     try:
         s68, s95 = (float(f) for f in factors.split(","))
+        anchor = float(share) if at else None
     except ValueError:
-        sys.exit(f"interval_scales.py: --use '{text}': give KIND=S68,S95, e.g. --use \"random walk=1,0.6119\"")
-    return kind, {"68": s68, "95": s95}
+        sys.exit(f"interval_scales.py: --use '{text}': give KIND=S68,S95 or KIND@SHARE=S68,S95, e.g. "
+                 "--use \"random walk=1,0.6119\" or --use \"white@0.002=0.6294,0.8308\"")
+    if anchor is not None and not anchor > 0.0:
+        sys.exit(f"interval_scales.py: --use '{text}': the share after @ must be positive, e.g. white@0.002")
+    return kind, anchor, {"68": s68, "95": s95}
+
+
+def white_level(group):
+    """The share of each peak a "white X %" group's noise has, or None for another group."""
+    name, _, rest = group.partition(" ")
+    if name != "white" or not rest.endswith(" %"):
+        return None
+    try:
+        return float(rest[:-2]) / 100.0
+    except ValueError:
+        return None
+
+
+def factor(row, level, scales):
+    """A kind's factor for one curve: a number, or, for anchors {share: {level: factor}}, the anchors'
+    factors interpolated linearly in the log of the curve's measured white noise in E_e."""
+    if level in scales:
+        return scales[level]
+    shares = sorted(scales)
+    try:
+        share = float(row["energy_white_share"])
+    except (KeyError, ValueError):
+        sys.exit(f"{row['source']}: no energy_white_share for a curve scored with level-following factors; "
+                 "give files from held-out-22-edge on")
+    if share <= shares[0]:
+        return scales[shares[0]][level]
+    for low, high in zip(shares, shares[1:]):
+        if share <= high:
+            t = (math.log(share) - math.log(low)) / (math.log(high) - math.log(low))
+            return (1.0 - t) * scales[low][level] + t * scales[high][level]
+    return scales[shares[-1]][level]
 
 
 def conformal_scale(scores, level):
@@ -112,19 +155,35 @@ def conformal_scale(scores, level):
 
 
 def learn_scales(rows):
-    """{noise kind: {level: scale}} from the accepted rows of each kind."""
+    """{noise kind: {level: scale}} from the accepted rows of each kind; with --white-by-level the white
+    kind's are {share: {level: scale}}, one anchor per white group."""
     scales = {}
     for kind in sorted({r["noise"] for r in rows}):
         accepted = [r for r in rows if r["noise"] == kind and r["accepted"] == "1"]
-        if accepted:
+        if WHITE_BY_LEVEL and kind == "white":
+            anchors = {}
+            for r in accepted:
+                if white_level(r["group"]) is not None:
+                    anchors.setdefault(white_level(r["group"]), []).append(r)
+            scales[kind] = {share: {lvl: conformal_scale([score(r, lvl) for r in members], p)
+                                    for lvl, p in LEVELS} for share, members in anchors.items()}
+        elif accepted:
             scales[kind] = {lvl: conformal_scale([score(r, lvl) for r in accepted], p) for lvl, p in LEVELS}
     return scales
 
 
+def describe(by_level):
+    """A kind's scales in words: one pair, or one pair per anchor."""
+    if "68" in by_level:
+        return f"scale 68 % = {by_level['68']:.4f}, scale 95 % = {by_level['95']:.4f}"
+    return "; ".join(f"at {100 * share:g} %: {by_level[share]['68']:.4f}, {by_level[share]['95']:.4f}"
+                     for share in sorted(by_level))
+
+
 def is_covered(row, level, by_level):
     """Whether the scaled interval of `level` reaches the truth (the 95 % one holds the 68 % one)."""
-    reached = score(row, level) <= by_level[level]
-    return reached or (level == "95" and score(row, "68") <= by_level["68"])
+    reached = score(row, level) <= factor(row, level, by_level)
+    return reached or (level == "95" and score(row, "68") <= factor(row, "68", by_level))
 
 
 def table(title, rows, scales):
@@ -181,7 +240,7 @@ def verdict(rows, scales):
 
 
 def main(argv):
-    global QUANTITY, KIND_COLUMN, QUIET_BELOW
+    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -203,9 +262,20 @@ def main(argv):
                 QUIET_BELOW = float(next(args, ""))
             except ValueError:
                 sys.exit("interval_scales.py: --quiet-below needs a share of the peaks, e.g. --quiet-below 5e-4")
+        elif arg == "--white-by-level":
+            WHITE_BY_LEVEL = True
         elif arg == "--use":
-            kind, by_level = parse_use(next(args, ""))
-            given[kind] = by_level
+            kind, share, by_level = parse_use(next(args, ""))
+            if share is None:
+                if kind in given:
+                    sys.exit(f"interval_scales.py: --use: {kind} is given twice or with anchors; give it once")
+                given[kind] = by_level
+            else:
+                anchors = given.setdefault(kind, {})
+                if "68" in anchors:
+                    sys.exit(f"interval_scales.py: --use: {kind} has both one factor and anchors; give one or "
+                             "the other")
+                anchors[share] = by_level
         elif arg == "--skip-shape":
             name = next(args, "")
             if not name:
@@ -225,14 +295,13 @@ def main(argv):
     print(f"{QUANTITY}'s scales learned on {', '.join(learn)}:")
     for kind, by_level in scales.items():
         n = sum(r["noise"] == kind and r["accepted"] == "1" for r in learning)
-        print(f"  {kind} noise ({n} accepted curves): scale 68 % = {by_level['68']:.4f}, "
-              f"scale 95 % = {by_level['95']:.4f}")
+        print(f"  {kind} noise ({n} accepted curves): {describe(by_level)}")
     for kind in given:
         if kind not in {r["noise"] for r in read(learn + check)}:
             sys.exit(f"interval_scales.py: --use '{kind}=...': no curve of that kind of noise; the `noise` "
                      "column names them (white, random walk)")
     for kind, by_level in given.items():
-        print(f"  scored with {kind} noise: scale 68 % = {by_level['68']:.4f}, scale 95 % = {by_level['95']:.4f}")
+        print(f"  scored with {kind} noise: {describe(by_level)}")
         scales[kind] = by_level
     table("Learning set", learning, scales)
     for path in check:
