@@ -746,7 +746,8 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
     return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : uncalibrated_scales;
   };
   r.x_c_interval = strain_interval(*r.x_c, scales_of(critical_strain_scales));
-  r.x_p_interval = strain_interval(*r.x_p, scales_of(precursor_strain_scales));
+  r.x_p_interval = strain_interval(
+      *r.x_p, options.calibrated_intervals ? precursor_scales(r, walk_profile) : uncalibrated_scales);
   if (options.delay_method == DelayMethod::fitted_maxima) {
     r.interval_scales = scales_of(delta_interval_scales);
     delay = delay_from_replicates(
@@ -1051,6 +1052,29 @@ nlohmann::json mechanism_json(const AnalysisResult& r) {
 bool reads_random_walk(const AnalysisResult& r) { return r.force_walk || r.energy_walk; }
 
 bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r) || r.quiet; }
+
+IntervalScales precursor_white_scales(double energy_white_share) {
+  const auto& anchors = precursor_white_anchors;
+  if (!(energy_white_share > 0.0)) return uncalibrated_scales;
+  const bool calibrated = precursor_white_calibrated_from <= energy_white_share &&
+                          energy_white_share <= precursor_white_calibrated_to;
+  const auto at = [&](const NoiseLevelAnchor& a) { return IntervalScales{a.level68, a.level95, calibrated}; };
+  if (energy_white_share <= anchors.front().share) return at(anchors.front());
+  for (std::size_t i = 1; i < anchors.size(); ++i) {
+    const auto &low = anchors[i - 1], &high = anchors[i];
+    if (energy_white_share > high.share) continue;
+    const double t = std::log(energy_white_share / low.share) / std::log(high.share / low.share);
+    return {(1.0 - t) * low.level68 + t * high.level68, (1.0 - t) * low.level95 + t * high.level95,
+            calibrated};
+  }
+  return at(anchors.back());
+}
+
+IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
+  const bool walk = scored_as_random_walk(r);
+  if (walk || !r.E_max || r.E_max->value == 0.0) return precursor_strain_scales.for_noise(walk, walk_profile);
+  return precursor_white_scales(r.noise_model.energy.white / std::abs(r.E_max->value));
+}
 
 std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }
 

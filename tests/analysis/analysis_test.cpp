@@ -442,6 +442,33 @@ TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
   EXPECT_FALSE(to_json(white)["delta_x"]["interval_scales"]["quiet"].get<bool>());
 }
 
+// x_p's white factors: the anchors at their shares, linear in log share between them (so the
+// geometric mean of two shares gets the mean of their factors), the end anchors beyond them,
+// calibrated only inside the learning curves' range, and 1 where the share is not measured.
+TEST(IntervalScales, PrecursorWhiteFactorsFollowTheMeasuredNoiseLevel) {
+  for (const auto& a : precursor_white_anchors) {
+    const auto at = precursor_white_scales(a.share);
+    EXPECT_DOUBLE_EQ(at.level68, a.level68);
+    EXPECT_DOUBLE_EQ(at.level95, a.level95);
+    EXPECT_TRUE(at.calibrated);
+  }
+  const auto &low = precursor_white_anchors[0], &high = precursor_white_anchors[1];
+  const auto between = precursor_white_scales(std::sqrt(low.share * high.share));
+  EXPECT_NEAR(between.level68, 0.5 * (low.level68 + high.level68), 1e-12);
+  EXPECT_NEAR(between.level95, 0.5 * (low.level95 + high.level95), 1e-12);
+  for (std::size_t i = 1; i < precursor_white_anchors.size(); ++i)
+    EXPECT_GT(precursor_white_anchors[i].level68, precursor_white_anchors[i - 1].level68)
+        << "rises with noise";
+  const auto quiet_end = precursor_white_scales(0.001), loud_end = precursor_white_scales(0.05);
+  EXPECT_EQ(quiet_end.level68, low.level68);
+  EXPECT_EQ(loud_end.level95, precursor_white_anchors.back().level95);
+  EXPECT_FALSE(quiet_end.calibrated);
+  EXPECT_FALSE(loud_end.calibrated);
+  EXPECT_TRUE(precursor_white_scales(precursor_white_calibrated_from).calibrated);
+  EXPECT_FALSE(precursor_white_scales(0.0).calibrated);
+  EXPECT_EQ(precursor_white_scales(std::nan("")).level68, 1.0);
+}
+
 // x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
 // the factors of the noise kind scored (1 where none passed a held-out check, and marked so), and written
 // to analysis.json.
@@ -454,7 +481,7 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
     const bool walk = scored_as_random_walk(*r);
     for (const auto& [m, interval, scales] :
          {std::tuple{*r->x_c, *r->x_c_interval, critical_strain_scales.for_noise(walk, true)},
-          std::tuple{*r->x_p, *r->x_p_interval, precursor_strain_scales.for_noise(walk, true)}}) {
+          std::tuple{*r->x_p, *r->x_p_interval, precursor_scales(*r, true)}}) {
       EXPECT_NEAR(interval.ci68_high - m.value, scales.level68 * m.error, 1e-12 * m.error);
       EXPECT_NEAR(m.value - interval.ci95_low, std::max(1.96 * scales.level95, scales.level68) * m.error,
                   1e-12 * m.error);
@@ -471,6 +498,12 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   EXPECT_FALSE(reads_random_walk(white));
   EXPECT_FALSE(white.quiet);
   EXPECT_EQ(white.x_c_interval->scales.level68, critical_strain_scales.white_noise.level68);
+  // x_p's white factors follow E_e's measured white noise: about 1 % of E_max here.
+  const double share = white.noise_model.energy.white / white.E_max->value;
+  EXPECT_NEAR(share, 0.01, 0.002);
+  EXPECT_EQ(white.x_p_interval->scales.level68, precursor_white_scales(share).level68);
+  EXPECT_TRUE(white.x_p_interval->scales.calibrated);
+  EXPECT_EQ(bundle.x_p_interval->scales.level68, precursor_strain_scales.random_walk_profile.level68);
   AnalysisOptions unscaled;
   unscaled.calibrated_intervals = false;
   const auto own = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), unscaled);

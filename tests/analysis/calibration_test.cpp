@@ -83,7 +83,7 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
     const auto exact = calibration::truth(s);
     const auto& d = *r.delay;
     delta.add(exact.delta(), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
-    // x_c's and x_p's factors are calibrated on curves read as a random walk only.
+    // x_c's and x_p's intervals count where their factors are calibrated (x_p's are not on a walk).
     if (r.x_c_interval->scales.calibrated) x_c.add(exact.x_c, *r.x_c_interval);
     if (r.x_p_interval->scales.calibrated) x_p.add(exact.x_p, *r.x_p_interval);
   }
@@ -101,6 +101,40 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
     EXPECT_GE(coverage.curves, delta.curves - 6) << name << ": most bundles read as a random walk";
     coverage.expect_nominal(name);
   }
+}
+
+// The CI share of the white-noise groups: five shapes of the table at 300 and 1000 rows with white noise of
+// 0.5 % and 2 % of each peak, levels between the calibration table's (x_p's factors interpolate
+// there, analysis.hpp precursor_white_scales). 60 curves, bounds ± 4 binomial sd as above: a guard
+// against an interval a third too narrow or too wide, for every interval that says it is calibrated.
+TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
+  using namespace calibration;
+  const std::vector<Shape> set = {weibull(3), weibull(5), power_law(3), log_normal(0.3), weibull_mixture()};
+  const int curves = 60;
+  Coverage delta, x_c, x_p;
+  for (int k = 0; k < curves; ++k) {
+    const Shape& s = set[static_cast<std::size_t>(k) % set.size()];
+    const std::size_t rows = (k / 5) % 2 == 0 ? 300 : 1000;
+    const double level = k % 2 == 0 ? 0.005 : 0.02;
+    AnalysisOptions options;
+    options.uncertainty.replicates = 100;
+    const auto r =
+        analyze_curve(white_noise_curve(s, rows, level, static_cast<std::uint64_t>(k + 101)), options);
+    if (!r.accepted) continue;
+    ASSERT_FALSE(scored_as_random_walk(r)) << s.name << ", " << rows << " rows: white noise read as a walk";
+    const auto exact = calibration::truth(s);
+    const auto& d = *r.delay;
+    ASSERT_TRUE(r.interval_scales.calibrated && r.x_c_interval->scales.calibrated &&
+                r.x_p_interval->scales.calibrated)
+        << s.name << ": every white interval at these levels is calibrated";
+    delta.add(exact.delta(), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
+    x_c.add(exact.x_c, *r.x_c_interval);
+    x_p.add(exact.x_p, *r.x_p_interval);
+  }
+  EXPECT_GE(delta.curves, curves - 1);
+  delta.expect_nominal("delta_x");
+  x_c.expect_nominal("x_c");
+  x_p.expect_nominal("x_p");
 }
 
 }  // namespace

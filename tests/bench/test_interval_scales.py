@@ -93,3 +93,48 @@ def test_quiet_curves_and_another_kind_column_choose_the_kind_scored(tmp_path):
     assert "random walk noise (6 accepted curves)" in read.stdout and "white noise" not in read.stdout
     missing = run(str(path), "--kind-column", "no_such_column")
     assert missing.returncode != 0 and "no column no_such_column" in missing.stderr
+
+
+def test_white_factors_by_level_are_learned_per_group_and_follow_the_measured_share(tmp_path):
+    """--white-by-level learns one anchor per "white X %" group; each curve is scored by its
+    energy_white_share, linear in log share between anchors and held at the ends (as
+    precursor_white_scales in src/analysis/analysis.hpp)."""
+    module = load()
+    low = rows_with_scores([0.01 * (i + 1) for i in range(100)], [0.5] * 100, noise="white", group="white 0.2 %")
+    high = rows_with_scores([0.02 * (i + 1) for i in range(100)], [0.5] * 100, noise="white", group="white 3 %")
+    module.WHITE_BY_LEVEL = True
+    try:
+        scales = module.learn_scales(low + high)["white"]
+    finally:
+        module.WHITE_BY_LEVEL = False
+    assert sorted(scales) == [0.002, 0.03]
+    assert abs(scales[0.002]["68"] - 0.69) < 1e-12 and abs(scales[0.03]["68"] - 1.38) < 1e-12
+    between = {"energy_white_share": str((0.002 * 0.03) ** 0.5), "source": "t"}
+    assert abs(module.factor(between, "68", scales) - 0.5 * (0.69 + 1.38)) < 1e-12
+    assert module.factor({"energy_white_share": "1e-4", "source": "t"}, "68", scales) == scales[0.002]["68"]
+    assert module.factor({"energy_white_share": "0.5", "source": "t"}, "68", scales) == scales[0.03]["68"]
+
+
+def test_anchors_given_with_use_score_each_curve_at_its_level(tmp_path):
+    """--use KIND@SHARE=S68,S95 builds the level model from the command line; a curve without a
+    measured share, a nonpositive share or a kind given both ways is refused with the fix."""
+    rows = rows_with_scores([0.5] * 4, [0.5] * 4, noise="white", group="white 1 %")
+    for row, share in zip(rows, ["0.002", "0.002", "0.03", "0.03"]):
+        row["energy_white_share"] = share
+    path = tmp_path / "levels.csv"
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        table = csv.DictWriter(f, fieldnames=COLUMNS + ["energy_white_share"])
+        table.writeheader()
+        table.writerows(rows)
+    # Needed stretch 0.5 everywhere: covered at 68 % where the anchor's factor is 0.6, not where it is 0.4.
+    result = run(str(path), "--use", "white@0.002=0.6,1", "--use", "white@0.03=0.4,1", "--check", str(path))
+    assert result.returncode == 0, result.stderr
+    assert "at 0.2 %: 0.6000, 1.0000; at 3 %: 0.4000, 1.0000" in result.stdout
+    assert "| white 1 % | 4 | 0 | 4 | 50.0 % |" in result.stdout
+    bad = run(str(path), "--use", "white@0=0.6,1")
+    assert bad.returncode != 0 and "the share after @ must be positive" in bad.stderr
+    both = run(str(path), "--use", "white@0.002=0.6,1", "--use", "white=1,1")
+    assert both.returncode != 0 and "give it once" in both.stderr
+    no_share = write(tmp_path / "no-share.csv", rows_with_scores([0.5] * 2, [0.5] * 2, noise="white"))
+    missing = run(no_share, "--use", "white@0.002=0.6,1")
+    assert missing.returncode != 0 and "no energy_white_share" in missing.stderr
