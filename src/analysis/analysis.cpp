@@ -746,6 +746,13 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
     return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : uncalibrated_scales;
   };
   r.x_c_interval = strain_interval(*r.x_c, scales_of(critical_strain_scales));
+  if (force_walk_hidden(r)) {
+    r.x_c_interval->scales.calibrated = false;
+    r.warnings.emplace_back(
+        "F's random walk is hidden under its white noise in the bootstrap window (fitted walk step 0, E_e's "
+        "not): x_c's interval leaves it out and is not calibrated (it covered 24-50 % at 68 % on such curves "
+        "with known answers; docs/analysis.md, \"Known limits\")");
+  }
   r.x_p_interval = strain_interval(
       *r.x_p, options.calibrated_intervals ? precursor_scales(r, walk_profile) : uncalibrated_scales);
   if (options.delay_method == DelayMethod::fitted_maxima) {
@@ -1052,6 +1059,10 @@ nlohmann::json mechanism_json(const AnalysisResult& r) {
 bool reads_random_walk(const AnalysisResult& r) { return r.force_walk || r.energy_walk; }
 
 bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r) || r.quiet; }
+
+bool force_walk_hidden(const AnalysisResult& r) {
+  return scored_as_random_walk(r) && r.noise_model.force.walk == 0.0 && r.noise_model.energy.walk > 0.0;
+}
 
 IntervalScales precursor_white_scales(double energy_white_share) {
   const auto& anchors = precursor_white_anchors;

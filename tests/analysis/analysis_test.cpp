@@ -150,9 +150,12 @@ TEST(AnalyzeCurve, ForceAndEnergyWithDifferentNoiseKindsAreWarnedOf) {
   const auto r = analyze_curve(mixed_case.draw(mixed_noise_groups()[1]), {});
   EXPECT_FALSE(r.force_walk);
   EXPECT_TRUE(r.energy_walk);
-  ASSERT_EQ(r.warnings.size(), 1u);
+  // F's walk is also lost under its white noise here, which is a second warning (x_c's interval).
+  EXPECT_TRUE(force_walk_hidden(r));
+  ASSERT_EQ(r.warnings.size(), 2u);
   EXPECT_NE(r.warnings[0].find("the noise of F reads as white and that of E_e as a random walk"),
             std::string::npos);
+  EXPECT_NE(r.warnings[1].find("F's random walk is hidden"), std::string::npos);
   const auto j = to_json(r);
   EXPECT_EQ(j["filter"]["noise_read"]["force"], "white");
   EXPECT_EQ(j["filter"]["noise_read"]["elastic_energy"], "random walk");
@@ -440,6 +443,31 @@ TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
   EXPECT_FALSE(scored_as_random_walk(white));
   EXPECT_EQ(white.interval_scales.level68, delta_interval_scales.white_noise.level68);
   EXPECT_FALSE(to_json(white)["delta_x"]["interval_scales"]["quiet"].get<bool>());
+}
+
+// A DEM-like curve (a bundle whose F also carries 1 % white noise) at 1,000 rows: F's walk is lost
+// under its white noise in the window's noise model, so x_c's interval says it is not calibrated and
+// a warning says why; the same bundle without the white noise on F keeps its calibrated interval.
+TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
+  using namespace calibration;
+  const auto set = calibration_set("tuning");
+  const NoiseGroup mixed = mixed_noise_groups()[0];
+  const auto curve_case = CalibrationCase::at(set, static_cast<int>(set.size()));  // 1,000 rows
+  ASSERT_EQ(curve_case.rows, 1000u);
+  const auto hidden = analyze_curve(curve_case.draw(mixed), {});
+  ASSERT_TRUE(hidden.accepted) << hidden.rejection;
+  ASSERT_TRUE(force_walk_hidden(hidden)) << "F walk " << hidden.noise_model.force.walk;
+  EXPECT_EQ(hidden.noise_model.force.walk, 0.0);
+  EXPECT_GT(hidden.noise_model.energy.walk, 0.0);
+  EXPECT_FALSE(hidden.x_c_interval->scales.calibrated);
+  EXPECT_EQ(hidden.x_c_interval->scales.level68, critical_strain_scales.random_walk_profile.level68);
+  ASSERT_FALSE(hidden.warnings.empty());
+  EXPECT_NE(hidden.warnings.back().find("F's random walk is hidden"), std::string::npos);
+  EXPECT_FALSE(to_json(hidden)["x_c"]["interval_scales"]["calibrated"].get<bool>());
+  const auto plain = analyze_curve(curve_case.draw({"bundle", 0, mixed.fibers}), {});
+  ASSERT_TRUE(plain.accepted) << plain.rejection;
+  EXPECT_FALSE(force_walk_hidden(plain));
+  EXPECT_TRUE(plain.x_c_interval->scales.calibrated);
 }
 
 // x_p's white factors: the anchors at their shares, linear in log share between them (so the
