@@ -27,7 +27,7 @@ interval = 200
 [run]
 threads = 2
 TOML
-printf '| sample seed | rows every (steps) | rows | noise | x_p [%%] | x_c [%%] | δ_x [%%] | sd [%%] | 95 %% interval [%%] | accepted |\n|---|---|---|---|---|---|---|---|---|---|\n'
+printf '| sample seed | rows every (steps) | rows | noise | x_p [%%] | x_c [%%] | δ_x [%%] | sd [%%] | 95 %% interval [%%] | accepted | x_p sd [%%] | x_p 95 %% [%%] | E_e white [%% of E_max] |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
 run_one() {
   local seed=$1 interval=$2 dir="$out/seed$1-every$2"
   if [ ! -f "$dir/curves.csv" ] || [ ! -f "$dir/run.json" ] || ! grep -q '"finished"' "$dir/run.json"; then
@@ -39,10 +39,15 @@ run_one() {
 import json, sys
 j = json.load(open(sys.argv[1])); d = j.get("delta_x") or {}
 f = lambda k: (j.get(k) or {}).get("value", float("nan"))
-print("| %s | %s | %d | %s | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f] | %s |" % (sys.argv[2], sys.argv[3], j["resample"]["input_rows"],
-      (d.get("interval_scales") or {}).get("noise", "-"),
+x_p = j.get("x_p") or {}
+white = ((j.get("uncertainty") or {}).get("noise") or {}).get("elastic_energy", {}).get("white_sd", {}).get("value")
+share = 100 * white / f("E_max") if white is not None and f("E_max") > 0 else float("nan")
+calibrated = "" if (x_p.get("interval_scales") or {}).get("calibrated") else " (not calibrated)"
+print("| %s | %s | %d | %s | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f] | %s | %.4f | [%.4f, %.4f]%s | %.3f |" % (
+      sys.argv[2], sys.argv[3], j["resample"]["input_rows"], (d.get("interval_scales") or {}).get("noise", "-"),
       f("x_p"), f("x_c"), d.get("value", float("nan")), d.get("sd", float("nan")),
-      *(d.get("ci95") or [float("nan")] * 2), "yes" if j["accepted"] else "no: " + j["rejection"]))
+      *(d.get("ci95") or [float("nan")] * 2), "yes" if j["accepted"] else "no: " + j["rejection"],
+      x_p.get("error", float("nan")), *(x_p.get("ci95") or [float("nan")] * 2), calibrated, share))
 PY
 }
 for interval in 50 100 200; do run_one 1 "$interval"; done

@@ -1066,9 +1066,10 @@ bool force_walk_hidden(const AnalysisResult& r) {
 
 IntervalScales precursor_white_scales(double energy_white_share) {
   const auto& anchors = precursor_white_anchors;
-  if (!(energy_white_share > 0.0)) return uncalibrated_scales;
-  const bool calibrated = precursor_white_calibrated_from <= energy_white_share &&
-                          energy_white_share <= precursor_white_calibrated_to;
+  // Below the checked range E_e's white noise no longer sets x_p's spread (a DEM curve's E_e is a
+  // walk): the factors' fall towards low noise is not extrapolated, the bootstrap's own sd stands.
+  if (!(energy_white_share >= precursor_white_calibrated_from)) return uncalibrated_scales;
+  const bool calibrated = energy_white_share <= precursor_white_calibrated_to;
   const auto at = [&](const NoiseLevelAnchor& a) { return IntervalScales{a.level68, a.level95, calibrated}; };
   if (energy_white_share <= anchors.front().share) return at(anchors.front());
   for (std::size_t i = 1; i < anchors.size(); ++i) {

@@ -183,7 +183,9 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
 // heavy-tailed against its sd, whose smoothing shift and peak-fit terms do not shrink with the noise.
 // Anchors: those quantiles on the five sets pooled (the curves scored as white), rounded up;
 // interpolated linearly in log ν, held at the end anchors beyond them. Calibrated only for ν within
-// the learning curves' 0.5th-99.5th percentiles. Passed held-out 25, whose white groups include 0.5
+// the learning curves' 0.5th-99.5th percentiles; below that range the factors are 1 (the bootstrap's
+// own sd: E_e's white noise no longer sets x_p's spread, as on DEM curves, whose E_e is a walk),
+// above it the 3 % anchor's, both not calibrated. Passed held-out 25, whose white groups include 0.5
 // and 2 %, levels no learning set held (68.7 %, 93.9 %; lowest group 64.6 %, 92.9 %; docs/analysis.md,
 // "x_p's white factors that follow the measured noise level").
 struct NoiseLevelAnchor {

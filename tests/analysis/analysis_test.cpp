@@ -472,7 +472,7 @@ TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
 
 // x_p's white factors: the anchors at their shares, linear in log share between them (so the
 // geometric mean of two shares gets the mean of their factors), the end anchors beyond them,
-// calibrated only inside the learning curves' range, and 1 where the share is not measured.
+// calibrated only inside the learning curves' range, and 1 below it or where it is not measured.
 TEST(IntervalScales, PrecursorWhiteFactorsFollowTheMeasuredNoiseLevel) {
   for (const auto& a : precursor_white_anchors) {
     const auto at = precursor_white_scales(a.share);
@@ -488,7 +488,8 @@ TEST(IntervalScales, PrecursorWhiteFactorsFollowTheMeasuredNoiseLevel) {
     EXPECT_GT(precursor_white_anchors[i].level68, precursor_white_anchors[i - 1].level68)
         << "rises with noise";
   const auto quiet_end = precursor_white_scales(0.001), loud_end = precursor_white_scales(0.05);
-  EXPECT_EQ(quiet_end.level68, low.level68);
+  EXPECT_EQ(quiet_end.level68, 1.0) << "below the checked range: the bootstrap's own sd";
+  EXPECT_EQ(precursor_white_scales(0.0018).level68, low.level68) << "held at the lowest anchor";
   EXPECT_EQ(loud_end.level95, precursor_white_anchors.back().level95);
   EXPECT_FALSE(quiet_end.calibrated);
   EXPECT_FALSE(loud_end.calibrated);

@@ -217,7 +217,7 @@ def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):
         assert a.delta_x.error == expected["delta_x"]["error"]
         assert a.delta_x_ci95 == tuple(expected["delta_x"]["ci95"])
         # On a random walk δ_x's and x_c's factors passed held-out checks, with the profile only; x_p's
-        # failed held-out 23 and are not calibrated either way.
+        # failed held-outs 23 and 25 and are not calibrated either way.
         assert a.intervals_calibrated == {"x_c": walk_profile, "x_p": False, "delta_x": walk_profile}
         for key in ("x_c", "x_p"):
             assert getattr(a, f"{key}_ci95") == tuple(expected[key]["ci95"])
