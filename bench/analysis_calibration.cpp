@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
           per_curve << ',' << noise.force.white / r.F_c->value << ',' << noise.force.walk / r.F_c->value
                     << ',';
           if (r.E_max)
-            per_curve << noise.energy.white / r.E_max->value << ',' << noise.energy.walk / r.E_max->value;
+            per_curve << energy_white_share(r) << ',' << noise.energy.walk / r.E_max->value;
           else
             per_curve << ',';
         } else {

@@ -4,7 +4,7 @@
 
 Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p] [--use KIND=S68,S95 ...]
                           [--skip-shape NAME ...] [--kind-column COLUMN] [--quiet-below SHARE]
-                          [--white-by-level] [--check CHECK.csv ...]
+                          [--white-by-level] [--white-from SHARE] [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -27,8 +27,10 @@ written before it.
 `--white-by-level` learns the white kind's scales per white group ("white 1 %": anchored at a share
 of 0.01) and applies them to each curve through its measured white noise in E_e
 (`energy_white_share`): interpolated linearly in the log of that share between the anchors, held at
-the end anchors beyond them (src/analysis/analysis.hpp, precursor_white_scales, for x_p).
-`--use "white@0.002=0.6294,0.8308"` gives one such anchor (several make the model).
+the end anchors beyond them. `--white-from 0.0017` gives factor 1 below that share instead, as
+src/analysis/analysis.hpp's precursor_white_scales does for x_p (below its checked range); a curve
+without a measured share (no E_max) gets factor 1 either way.
+`--use "white@0.002=0.6213,0.8308"` gives one such anchor (several make the model).
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -46,6 +48,7 @@ QUANTITY = "delta_x"  # set by --quantity
 KIND_COLUMN = "noise"  # set by --kind-column
 QUIET_BELOW = None  # set by --quiet-below
 WHITE_BY_LEVEL = False  # set by --white-by-level
+WHITE_FROM = None  # set by --white-from
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -111,7 +114,7 @@ def parse_use(text):
         anchor = float(share) if at else None
     except ValueError:
         sys.exit(f"interval_scales.py: --use '{text}': give KIND=S68,S95 or KIND@SHARE=S68,S95, e.g. "
-                 "--use \"random walk=1,0.6119\" or --use \"white@0.002=0.6294,0.8308\"")
+                 "--use \"random walk=1,0.6119\" or --use \"white@0.002=0.6213,0.8308\"")
     if anchor is not None and not anchor > 0.0:
         sys.exit(f"interval_scales.py: --use '{text}': the share after @ must be positive, e.g. white@0.002")
     return kind, anchor, {"68": s68, "95": s95}
@@ -134,11 +137,18 @@ def factor(row, level, scales):
     if level in scales:
         return scales[level]
     shares = sorted(scales)
-    try:
-        share = float(row["energy_white_share"])
-    except (KeyError, ValueError):
+    if not shares:
+        sys.exit(f"{row['source']}: no white group to anchor level-following factors on; learn on files with "
+                 "\"white X %\" groups or give anchors with --use \"white@SHARE=S68,S95\"")
+    if "energy_white_share" not in row:
         sys.exit(f"{row['source']}: no energy_white_share for a curve scored with level-following factors; "
                  "give files from held-out-22-edge on")
+    try:
+        share = float(row["energy_white_share"])
+    except ValueError:
+        return 1.0  # not measured (no E_max): the analysis keeps the bootstrap's own sd
+    if not math.isfinite(share) or (WHITE_FROM is not None and not share >= WHITE_FROM):
+        return 1.0
     if share <= shares[0]:
         return scales[shares[0]][level]
     for low, high in zip(shares, shares[1:]):
@@ -240,7 +250,7 @@ def verdict(rows, scales):
 
 
 def main(argv):
-    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL
+    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -264,6 +274,11 @@ def main(argv):
                 sys.exit("interval_scales.py: --quiet-below needs a share of the peaks, e.g. --quiet-below 5e-4")
         elif arg == "--white-by-level":
             WHITE_BY_LEVEL = True
+        elif arg == "--white-from":
+            try:
+                WHITE_FROM = float(next(args, ""))
+            except ValueError:
+                sys.exit("interval_scales.py: --white-from needs a share of E_max, e.g. --white-from 0.0017")
         elif arg == "--use":
             kind, share, by_level = parse_use(next(args, ""))
             if share is None:

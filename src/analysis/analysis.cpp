@@ -725,7 +725,7 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
 }
 
 // x_c's or x_p's intervals about the estimate, sized by their factors (critical_strain_scales,
-// precursor_strain_scales); unscaled where the options ask for the bootstrap's own.
+// precursor_scales); unscaled where the options ask for the bootstrap's own.
 // The 95 % interval is never inside the 68 % one, as for δ_x.
 StrainInterval strain_interval(const Measured& m, const IntervalScales& scales) {
   const double half68 = scales.level68 * m.error, half95 = std::max(1.96 * scales.level95 * m.error, half68);
@@ -746,12 +746,13 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
     return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : uncalibrated_scales;
   };
   r.x_c_interval = strain_interval(*r.x_c, scales_of(critical_strain_scales));
-  if (force_walk_hidden(r)) {
+  if (force_walk_hidden(r) && r.x_c_interval->scales.calibrated) {
     r.x_c_interval->scales.calibrated = false;
     r.warnings.emplace_back(
-        "F's random walk is hidden under its white noise in the bootstrap window (fitted walk step 0, E_e's "
-        "not): x_c's interval leaves it out and is not calibrated (it covered 24-50 % at 68 % on such curves "
-        "with known answers; docs/analysis.md, \"Known limits\")");
+        "the noise model fits no random walk in F while it fits one in E_e (bootstrap window): x_c's "
+        "interval "
+        "leaves F's walk out and is not calibrated (it covered 24-50 % at 68 % on such curves with known "
+        "answers; docs/analysis.md, \"Known limits\")");
   }
   r.x_p_interval = strain_interval(
       *r.x_p, options.calibrated_intervals ? precursor_scales(r, walk_profile) : uncalibrated_scales);
@@ -1082,10 +1083,16 @@ IntervalScales precursor_white_scales(double energy_white_share) {
   return at(anchors.back());
 }
 
+double energy_white_share(const AnalysisResult& r) {
+  if (!r.E_max || r.E_max->value == 0.0) return std::nan("");
+  return r.noise_model.energy.white / std::abs(r.E_max->value);
+}
+
 IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
   const bool walk = scored_as_random_walk(r);
-  if (walk || !r.E_max || r.E_max->value == 0.0) return precursor_strain_scales.for_noise(walk, walk_profile);
-  return precursor_white_scales(r.noise_model.energy.white / std::abs(r.E_max->value));
+  const double share = energy_white_share(r);
+  if (walk || std::isnan(share)) return precursor_strain_scales.for_noise(walk, walk_profile);
+  return precursor_white_scales(share);
 }
 
 std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }

@@ -115,7 +115,7 @@ TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
   for (int k = 0; k < curves; ++k) {
     const Shape& s = set[static_cast<std::size_t>(k) % set.size()];
     const std::size_t rows = (k / 5) % 2 == 0 ? 300 : 1000;
-    const double level = k % 2 == 0 ? 0.005 : 0.02;
+    const double level = (k / 10) % 2 == 0 ? 0.005 : 0.02;  // all 20 shape, rows and level combinations
     AnalysisOptions options;
     options.uncertainty.replicates = 100;
     const auto r =

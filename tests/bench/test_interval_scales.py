@@ -97,8 +97,9 @@ def test_quiet_curves_and_another_kind_column_choose_the_kind_scored(tmp_path):
 
 def test_white_factors_by_level_are_learned_per_group_and_follow_the_measured_share(tmp_path):
     """--white-by-level learns one anchor per "white X %" group; each curve is scored by its
-    energy_white_share, linear in log share between anchors and held at the ends (as
-    precursor_white_scales in src/analysis/analysis.hpp)."""
+    energy_white_share, linear in log share between anchors and held at the ends, or with
+    --white-from given, 1 below that share (as precursor_white_scales in src/analysis/analysis.hpp);
+    1 where the share is not measured."""
     module = load()
     low = rows_with_scores([0.01 * (i + 1) for i in range(100)], [0.5] * 100, noise="white", group="white 0.2 %")
     high = rows_with_scores([0.02 * (i + 1) for i in range(100)], [0.5] * 100, noise="white", group="white 3 %")
@@ -113,6 +114,14 @@ def test_white_factors_by_level_are_learned_per_group_and_follow_the_measured_sh
     assert abs(module.factor(between, "68", scales) - 0.5 * (0.69 + 1.38)) < 1e-12
     assert module.factor({"energy_white_share": "1e-4", "source": "t"}, "68", scales) == scales[0.002]["68"]
     assert module.factor({"energy_white_share": "0.5", "source": "t"}, "68", scales) == scales[0.03]["68"]
+    assert module.factor({"energy_white_share": "", "source": "t"}, "68", scales) == 1.0
+    assert module.factor({"energy_white_share": "nan", "source": "t"}, "95", scales) == 1.0
+    module.WHITE_FROM = 0.0017
+    try:
+        assert module.factor({"energy_white_share": "1e-4", "source": "t"}, "68", scales) == 1.0
+        assert module.factor({"energy_white_share": "0.0018", "source": "t"}, "68", scales) == scales[0.002]["68"]
+    finally:
+        module.WHITE_FROM = None
 
 
 def test_anchors_given_with_use_score_each_curve_at_its_level(tmp_path):
