@@ -1130,6 +1130,10 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["x_m"] = optional_json(r.x_m);
   j["E_max"] = optional_json(r.E_max);
   j["x_p"] = strain_json(r.x_p, r.x_p_interval, r);
+  // The level x_p's white factors followed (a fraction of E_max), so a reader sees why an interval is
+  // or is not calibrated.
+  if (j["x_p"].contains("interval_scales") && !scored_as_random_walk(r) && !std::isnan(energy_white_share(r)))
+    j["x_p"]["interval_scales"]["energy_white_share"] = energy_white_share(r);
   j["Erate_max"] = optional_json(r.Erate_max);
   j["peak_fits"] = {{"force", peak_json(r.force_peak, r.strain_unit)},
                     {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},

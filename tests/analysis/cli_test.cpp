@@ -75,6 +75,14 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
       std::string::npos)
       << r.out;
   EXPECT_EQ(j["delta_x"]["interval_scales"]["noise"], "white");
+  // E_e's white noise here is ~0.01 % of E_max, below the range x_p's white factors were checked on:
+  // x_p's interval is ± sd, not calibrated, and both outputs say at which level.
+  const double share = j["x_p"]["interval_scales"]["energy_white_share"].get<double>();
+  EXPECT_GT(share, 0.5e-4);
+  EXPECT_LT(share, precursor_white_calibrated_from);
+  EXPECT_FALSE(j["x_p"]["interval_scales"]["calibrated"].get<bool>());
+  EXPECT_EQ(j["x_p"]["interval_scales"]["ci68"].get<double>(), 1.0);
+  EXPECT_NE(r.out.find("of E_max; x_p's factors are calibrated for 0.17-3.2 %)"), std::string::npos) << r.out;
   EXPECT_EQ(j["delta_x"]["interval_scales"]["ci68"].get<double>(), delta_interval_scales.white_noise.level68);
   EXPECT_EQ(j["delta_x"]["interval_scales"]["ci95"].get<double>(), delta_interval_scales.white_noise.level95);
   EXPECT_LE(j["delta_x"]["ci95"][0].get<double>(), j["delta_x"]["ci68"][0].get<double>());
