@@ -249,6 +249,14 @@ def verdict(rows, scales):
               f"{'passes' if not failures else 'fails: ' + '; '.join(failures)} |")
 
 
+def share_argument(args, option, of_what, example):
+    """The share an option names, or the exit that says how to give it."""
+    try:
+        return float(next(args, ""))
+    except ValueError:
+        sys.exit(f"interval_scales.py: {option} needs a share {of_what}, e.g. {option} {example}")
+
+
 def main(argv):
     global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM
     if "--check" in argv:
@@ -268,17 +276,11 @@ def main(argv):
             if not KIND_COLUMN:
                 sys.exit("interval_scales.py: --kind-column needs a column name, e.g. --kind-column noise_read")
         elif arg == "--quiet-below":
-            try:
-                QUIET_BELOW = float(next(args, ""))
-            except ValueError:
-                sys.exit("interval_scales.py: --quiet-below needs a share of the peaks, e.g. --quiet-below 5e-4")
+            QUIET_BELOW = share_argument(args, arg, "of the peaks", "5e-4")
         elif arg == "--white-by-level":
             WHITE_BY_LEVEL = True
         elif arg == "--white-from":
-            try:
-                WHITE_FROM = float(next(args, ""))
-            except ValueError:
-                sys.exit("interval_scales.py: --white-from needs a share of E_max, e.g. --white-from 0.0017")
+            WHITE_FROM = share_argument(args, arg, "of E_max", "0.0017")
         elif arg == "--use":
             kind, share, by_level = parse_use(next(args, ""))
             if share is None:

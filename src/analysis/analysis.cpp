@@ -1088,11 +1088,15 @@ double energy_white_share(const AnalysisResult& r) {
   return r.noise_model.energy.white / std::abs(r.E_max->value);
 }
 
-IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
-  const bool walk = scored_as_random_walk(r);
+std::optional<double> precursor_noise_level(const AnalysisResult& r) {
   const double share = energy_white_share(r);
-  if (walk || std::isnan(share)) return precursor_strain_scales.for_noise(walk, walk_profile);
-  return precursor_white_scales(share);
+  if (scored_as_random_walk(r) || std::isnan(share)) return std::nullopt;
+  return share;
+}
+
+IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
+  if (const auto level = precursor_noise_level(r)) return precursor_white_scales(*level);
+  return precursor_strain_scales.for_noise(scored_as_random_walk(r), walk_profile);
 }
 
 std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }
@@ -1132,8 +1136,8 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["x_p"] = strain_json(r.x_p, r.x_p_interval, r);
   // The level x_p's white factors followed (a fraction of E_max), so a reader sees why an interval is
   // or is not calibrated.
-  if (j["x_p"].contains("interval_scales") && !scored_as_random_walk(r) && !std::isnan(energy_white_share(r)))
-    j["x_p"]["interval_scales"]["energy_white_share"] = energy_white_share(r);
+  if (const auto level = precursor_noise_level(r); level && j["x_p"].contains("interval_scales"))
+    j["x_p"]["interval_scales"]["energy_white_share"] = *level;
   j["Erate_max"] = optional_json(r.Erate_max);
   j["peak_fits"] = {{"force", peak_json(r.force_peak, r.strain_unit)},
                     {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},

@@ -301,6 +301,9 @@ bool force_walk_hidden(const AnalysisResult& result);
 // E_e's white noise in the bootstrap window as a share of E_max (the level x_p's white factors
 // follow); NaN without E_max or where it is 0.
 double energy_white_share(const AnalysisResult& result);
+// The level x_p's interval factors follow: energy_white_share on a curve scored as white where it is
+// measured; none on a walk or without E_max (x_p then takes precursor_strain_scales).
+std::optional<double> precursor_noise_level(const AnalysisResult& result);
 // x_p's interval factors for a result: the walk's for a curve scored as a random walk
 // (precursor_strain_scales), else those that follow E_e's measured white noise (precursor_white_scales;
 // 1, not calibrated, without E_max).

@@ -69,12 +69,12 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   strain_line("x_c", r.x_c, r.x_c_interval);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
-  if (r.x_p_interval && !r.x_p_interval->scales.calibrated && !analysis::scored_as_random_walk(r) &&
-      !std::isnan(analysis::energy_white_share(r))) {
+  const auto level = analysis::precursor_noise_level(r);
+  if (r.x_p_interval && !r.x_p_interval->scales.calibrated && level) {
     fmt::print(
         out,
         "              (E_e's white noise {:.3g} % of E_max; x_p's factors are calibrated for {:g}-{:g} %)\n",
-        100.0 * analysis::energy_white_share(r), 100.0 * analysis::precursor_white_calibrated_from,
+        100.0 * *level, 100.0 * analysis::precursor_white_calibrated_from,
         100.0 * analysis::precursor_white_calibrated_to);
   }
   line("Erate_max", r.Erate_max);

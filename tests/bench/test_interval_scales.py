@@ -147,3 +147,10 @@ def test_anchors_given_with_use_score_each_curve_at_its_level(tmp_path):
     no_share = write(tmp_path / "no-share.csv", rows_with_scores([0.5] * 2, [0.5] * 2, noise="white"))
     missing = run(no_share, "--use", "white@0.002=0.6,1")
     assert missing.returncode != 0 and "no energy_white_share" in missing.stderr
+
+
+def test_a_share_option_without_a_number_is_refused_with_an_example(tmp_path):
+    learn = write(tmp_path / "learn.csv", rows_with_scores([0.5] * 4, [0.5] * 4))
+    for option, example in (("--white-from", "--white-from 0.0017"), ("--quiet-below", "--quiet-below 5e-4")):
+        result = run(learn, option, "low")
+        assert result.returncode != 0 and f"e.g. {example}" in result.stderr, result.stderr
