@@ -3,9 +3,10 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-25|all]
-// [per-curve CSV] [all|white|bundle|mixed|white-between: the noise groups, default all; mixed: bundles
-// whose F also carries white noise, as DEM curves do; white-between: white noise at 0.5 and 2 %]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-26|all]
+// [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between: the noise groups,
+// default all; mixed: bundles whose F also carries white noise, as DEM curves do; white-between: white
+// noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and 0.14 %]
 // [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
 // stationary-walk: one step along the curve]. The per-curve file holds each curve's truth, estimates,
 // intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
@@ -39,7 +40,7 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-25, all\n",
+                 "held-out-26, all\n",
                  which.c_str());
     return 2;
   }
@@ -50,10 +51,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed" &&
-      kinds != "white-between") {
+      kinds != "white-between" && kinds != "white-low" && kinds != "white-low-between") {
     std::fprintf(stderr,
-                 "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed or "
-                 "white-between\n",
+                 "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed, "
+                 "white-between, white-low or white-low-between\n",
                  kinds.c_str());
     return 2;
   }
@@ -81,9 +82,11 @@ int main(int argc, char** argv) {
       "| group | curves | accepted | δ_x 68 %% | δ_x 95 %% | x_c 95 %% | x_p 95 %% | δ_x mean rel. error | "
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  const auto groups = kinds == "mixed"           ? mixed_noise_groups()
-                      : kinds == "white-between" ? between_noise_groups()
-                                                 : noise_groups();
+  const auto groups = kinds == "mixed"               ? mixed_noise_groups()
+                      : kinds == "white-between"     ? between_noise_groups()
+                      : kinds == "white-low"         ? low_noise_groups()
+                      : kinds == "white-low-between" ? low_between_noise_groups()
+                                                     : noise_groups();
   for (const auto& g : groups) {
     if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
     int accepted = 0, c68 = 0, c95 = 0, xc95 = 0, xp95 = 0, l1_count = 0;

@@ -712,7 +712,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-23").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-24").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-25").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-26").empty());
+  EXPECT_EQ(calibration_set("held-out-26").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-27").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
