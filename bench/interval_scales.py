@@ -4,7 +4,8 @@
 
 Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p] [--use KIND=S68,S95 ...]
                           [--skip-shape NAME ...] [--kind-column COLUMN] [--quiet-below SHARE]
-                          [--white-by-level] [--white-from SHARE] [--check CHECK.csv ...]
+                          [--white-by-level] [--white-from SHARE] [--level-from-both]
+                          [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -31,6 +32,9 @@ the end anchors beyond them. `--white-from 0.0017` gives factor 1 below that sha
 src/analysis/analysis.hpp's precursor_white_scales does for x_p (below its checked range); a curve
 without a measured share (no E_max) gets factor 1 either way.
 `--use "white@0.002=0.6213,0.8308"` gives one such anchor (several make the model).
+`--level-from-both` takes as each curve's level the larger of its white noise in F and in E_e
+(`force_white_share`, `energy_white_share`), as src/analysis/analysis.hpp's delay_noise_level does for
+δ_x (either curve's noise can set its spread).
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -49,6 +53,7 @@ KIND_COLUMN = "noise"  # set by --kind-column
 QUIET_BELOW = None  # set by --quiet-below
 WHITE_BY_LEVEL = False  # set by --white-by-level
 WHITE_FROM = None  # set by --white-from
+LEVEL_FROM_BOTH = False  # set by --level-from-both
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -145,6 +150,8 @@ def factor(row, level, scales):
                  "give files from held-out-22-edge on")
     try:
         share = float(row["energy_white_share"])
+        if LEVEL_FROM_BOTH:
+            share = max(share, float(row["force_white_share"]))
     except ValueError:
         return 1.0  # not measured (no E_max): the analysis keeps the bootstrap's own sd
     if not math.isfinite(share) or (WHITE_FROM is not None and not share >= WHITE_FROM):
@@ -258,7 +265,7 @@ def share_argument(args, option, of_what, example):
 
 
 def main(argv):
-    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM
+    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM, LEVEL_FROM_BOTH
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -279,6 +286,8 @@ def main(argv):
             QUIET_BELOW = share_argument(args, arg, "of the peaks", "5e-4")
         elif arg == "--white-by-level":
             WHITE_BY_LEVEL = True
+        elif arg == "--level-from-both":
+            LEVEL_FROM_BOTH = True
         elif arg == "--white-from":
             WHITE_FROM = share_argument(args, arg, "of E_max", "0.0017")
         elif arg == "--use":

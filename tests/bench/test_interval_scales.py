@@ -98,7 +98,7 @@ def test_quiet_curves_and_another_kind_column_choose_the_kind_scored(tmp_path):
 def test_white_factors_by_level_are_learned_per_group_and_follow_the_measured_share(tmp_path):
     """--white-by-level learns one anchor per "white X %" group; each curve is scored by its
     energy_white_share, linear in log share between anchors and held at the ends, or with
-    --white-from given, 1 below that share (as precursor_white_scales in src/analysis/analysis.hpp);
+    --white-from given, 1 below that share (as white_level_scales in src/analysis/analysis.hpp);
     1 where the share is not measured."""
     module = load()
     low = rows_with_scores([0.01 * (i + 1) for i in range(100)], [0.5] * 100, noise="white", group="white 0.2 %")
@@ -122,6 +122,15 @@ def test_white_factors_by_level_are_learned_per_group_and_follow_the_measured_sh
         assert module.factor({"energy_white_share": "0.0018", "source": "t"}, "68", scales) == scales[0.002]["68"]
     finally:
         module.WHITE_FROM = None
+    # --level-from-both: the larger of F's and E_e's shares (δ_x's level), so a curve whose F carries
+    # 3 % takes the 3 % anchor whatever E_e's noise.
+    loud_force = {"energy_white_share": "1e-4", "force_white_share": "0.03", "source": "t"}
+    assert module.factor(loud_force, "68", scales) == scales[0.002]["68"]
+    module.LEVEL_FROM_BOTH = True
+    try:
+        assert module.factor(loud_force, "68", scales) == scales[0.03]["68"]
+    finally:
+        module.LEVEL_FROM_BOTH = False
 
 
 def test_anchors_given_with_use_score_each_curve_at_its_level(tmp_path):
