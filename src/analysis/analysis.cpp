@@ -741,11 +741,9 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
                     const AnalysisOptions& options, AnalysisResult& r) {
   const auto& boot = run.boot;
   DelayPosterior delay;
-  const bool walk = scored_as_random_walk(r), walk_profile = options.uncertainty.walk_profile;
-  const auto scales_of = [&](const NoiseIntervalScales& calibrated) {
-    return options.calibrated_intervals ? calibrated.for_noise(walk, walk_profile) : uncalibrated_scales;
-  };
-  r.x_c_interval = strain_interval(*r.x_c, scales_of(critical_strain_scales));
+  const bool walk_profile = options.uncertainty.walk_profile;
+  r.x_c_interval = strain_interval(
+      *r.x_c, options.calibrated_intervals ? critical_scales(r, walk_profile) : uncalibrated_scales);
   if (force_walk_hidden(r) && r.x_c_interval->scales.calibrated) {
     r.x_c_interval->scales.calibrated = false;
     r.warnings.emplace_back(
@@ -757,7 +755,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   r.x_p_interval = strain_interval(
       *r.x_p, options.calibrated_intervals ? precursor_scales(r, walk_profile) : uncalibrated_scales);
   if (options.delay_method == DelayMethod::fitted_maxima) {
-    r.interval_scales = scales_of(delta_interval_scales);
+    r.interval_scales = options.calibrated_intervals ? delay_scales(r, walk_profile) : uncalibrated_scales;
     delay = delay_from_replicates(
         direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
         r.interval_scales);
@@ -1065,12 +1063,10 @@ bool force_walk_hidden(const AnalysisResult& r) {
   return scored_as_random_walk(r) && r.noise_model.force.walk == 0.0 && r.noise_model.energy.walk > 0.0;
 }
 
-IntervalScales precursor_white_scales(double energy_white_share) {
-  const auto& anchors = precursor_white_anchors;
-  // Below the checked range E_e's white noise no longer sets x_p's spread (a DEM curve's E_e is a
-  // walk): the factors' fall towards low noise is not extrapolated, the bootstrap's own sd stands.
-  if (!(energy_white_share >= precursor_white_calibrated_from)) return uncalibrated_scales;
-  const bool calibrated = energy_white_share <= precursor_white_calibrated_to;
+IntervalScales white_level_scales(const WhiteLevelScales& model, double energy_white_share) {
+  const auto& anchors = model.anchors;
+  if (!(energy_white_share >= model.calibrated_from)) return uncalibrated_scales;
+  const bool calibrated = energy_white_share <= model.calibrated_to;
   const auto at = [&](const NoiseLevelAnchor& a) { return IntervalScales{a.level68, a.level95, calibrated}; };
   if (energy_white_share <= anchors.front().share) return at(anchors.front());
   for (std::size_t i = 1; i < anchors.size(); ++i) {
@@ -1094,9 +1090,38 @@ std::optional<double> precursor_noise_level(const AnalysisResult& r) {
   return share;
 }
 
+std::optional<double> critical_noise_level(const AnalysisResult& r) {
+  if (scored_as_random_walk(r) || !r.F_c || r.F_c->value == 0.0) return std::nullopt;
+  return r.noise_model.force.white / std::abs(r.F_c->value);
+}
+
+std::optional<double> delay_noise_level(const AnalysisResult& r) {
+  const auto energy = precursor_noise_level(r), force = critical_noise_level(r);
+  if (!energy || !force) return energy ? energy : force;
+  return std::max(*energy, *force);
+}
+
 IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
-  if (const auto level = precursor_noise_level(r)) return precursor_white_scales(*level);
+  if (const auto level = precursor_noise_level(r)) return white_level_scales(precursor_white_levels, *level);
   return precursor_strain_scales.for_noise(scored_as_random_walk(r), walk_profile);
+}
+
+namespace {
+// A kind's factors, the white ones not calibrated below white_factors_checked_from.
+IntervalScales checked_from_level(const NoiseIntervalScales& kinds, const AnalysisResult& r,
+                                  bool walk_profile, std::optional<double> level) {
+  IntervalScales scales = kinds.for_noise(scored_as_random_walk(r), walk_profile);
+  if (level && !(*level >= white_factors_checked_from)) scales.calibrated = false;
+  return scales;
+}
+}  // namespace
+
+IntervalScales delay_scales(const AnalysisResult& r, bool walk_profile) {
+  return checked_from_level(delta_interval_scales, r, walk_profile, delay_noise_level(r));
+}
+
+IntervalScales critical_scales(const AnalysisResult& r, bool walk_profile) {
+  return checked_from_level(critical_strain_scales, r, walk_profile, critical_noise_level(r));
 }
 
 std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }
@@ -1134,16 +1159,21 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["x_m"] = optional_json(r.x_m);
   j["E_max"] = optional_json(r.E_max);
   j["x_p"] = strain_json(r.x_p, r.x_p_interval, r);
-  // The level x_p's white factors followed (a fraction of E_max), so a reader sees why an interval is
-  // or is not calibrated.
-  if (const auto level = precursor_noise_level(r); level && j["x_p"].contains("interval_scales"))
-    j["x_p"]["interval_scales"]["energy_white_share"] = *level;
   j["Erate_max"] = optional_json(r.Erate_max);
   j["peak_fits"] = {{"force", peak_json(r.force_peak, r.strain_unit)},
                     {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},
                     {"energy_rate", peak_json(r.rate_peak, r.strain_unit)},
                     {"method", "cubic least squares around the largest sample; stationary point"}};
   j["delta_x"] = delay_json(r);
+  // The levels x_p's and δ_x's white factors followed (shares of the peaks), so a reader sees why an
+  // interval is or is not calibrated.
+  if (const auto level = precursor_noise_level(r); level && j["x_p"].contains("interval_scales"))
+    j["x_p"]["interval_scales"]["energy_white_share"] = *level;
+  if (const auto level = critical_noise_level(r); level && j["x_c"].contains("interval_scales"))
+    j["x_c"]["interval_scales"]["force_white_share"] = *level;
+  if (const auto level = delay_noise_level(r);
+      level && j["delta_x"].is_object() && j["delta_x"].contains("interval_scales"))
+    j["delta_x"]["interval_scales"]["white_share"] = *level;
   j["delta_x_direct"] = optional_json(r.delta_x_direct);
   j["loading_phase_end"] = io::quantity(r.loading_phase_end, r.strain_unit);
   j["uncertainty"] = uncertainty_json(r);

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -164,7 +165,7 @@ inline constexpr NoiseIntervalScales delta_interval_scales{.white_noise = {0.706
 //   missed held-out 25 at N = 10^4 (68 %: 121 of 200, 124 needed), so they stay not calibrated.
 // - x_p, white: one factor per kind cannot serve it (0.7556/0.8785 passed held-out 21 and failed
 //   held-out 22, white 1 % at 68 %: 58.2 %); its factors follow the measured noise level instead
-//   (precursor_white_scales, below). white_noise here is for a curve without E_max, where that level
+//   (precursor_white_levels, below). white_noise here is for a curve without E_max, where that level
 //   is not measured: 1, not calibrated.
 // - x_c, white: failed held-outs 18 to 21 (on 21 only through the bundles read as white); with quiet
 //   curves scored as a walk (quiet_white_noise_share), learned on held-outs 22 and 23 and passed
@@ -176,28 +177,41 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
                                                              .random_walk = uncalibrated_scales,
                                                              .random_walk_profile = {0.9356, 1.0296, false}};
 
-// x_p's factors under white noise follow the curve's measured white noise in E_e, ν (the noise
-// model's white term in the bootstrap window over E_max; x_p is a maximum of ℰ = dE_e/dx): the
-// factor its 68 % interval needs rises with ν (split-conformal per white group on held-outs 20 to
-// 24: 0.55-0.64 at 0.2 %, 0.73-0.88 at 1 %, 0.77-0.95 at 3 %), since at low noise x_p's errors are
-// heavy-tailed against its sd, whose smoothing shift and peak-fit terms do not shrink with the noise.
-// Anchors: those quantiles on the five sets pooled (the curves scored as white), rounded up;
-// interpolated linearly in log ν, held at the end anchors beyond them. Calibrated only for ν within
-// the learning curves' 0.5th-99.5th percentiles (0.175 % and 3.164 %, rounded outward); below that
-// range the factors are 1 (the bootstrap's own sd: E_e's white noise no longer sets x_p's spread, as
-// on DEM curves, whose E_e is a walk), above it the 3 % anchor's, both not calibrated. Passed held-out
-// 25, whose white groups include 0.5 and 2 %, levels no learning set held (68.7 %, 93.9 %, lowest
-// group 64.6 %, 92.9 %; with factor 1 below the range, as shipped, 68.8 % and 93.9 %; docs/analysis.md,
-// "x_p's white factors that follow the measured noise level").
+// White-noise factors that follow the curve's measured white noise in E_e, ν (the noise model's
+// white term in the bootstrap window over E_max): each level's factor interpolated linearly in log ν
+// between anchors and held at the end anchors beyond them, calibrated for ν within [calibrated_from,
+// calibrated_to]. Below calibrated_from the factor is 1 (the bootstrap's own sd), not calibrated: the
+// factors' fall towards low noise is not extrapolated (on DEM curves E_e's noise is mostly a walk).
 struct NoiseLevelAnchor {
   double share = 0.0;  // white noise in E_e, fraction of E_max
   double level68 = 1.0, level95 = 1.0;
 };
+struct WhiteLevelScales {
+  std::span<const NoiseLevelAnchor> anchors;
+  double calibrated_from = 0.0, calibrated_to = 0.0;
+};
+// A model's factors at ν = `energy_white_share` (1, not calibrated, where it is NaN).
+IntervalScales white_level_scales(const WhiteLevelScales& model, double energy_white_share);
+
+// x_p's white model: the factor its 68 % interval needs rises with ν (split-conformal per white group
+// on held-outs 20 to 24: 0.55-0.64 at 0.2 %, 0.73-0.88 at 1 %, 0.77-0.95 at 3 %), since at low noise
+// x_p's errors are heavy-tailed against its sd, whose smoothing shift and peak-fit terms do not shrink
+// with the noise. Anchors: those quantiles on the five sets pooled (the curves scored as white), rounded
+// up; calibrated for ν within the learning curves' 0.5th-99.5th percentiles (0.175 % and 3.164 %,
+// rounded outward); above it the 3 % anchor's, not calibrated. Passed held-out 25, whose white groups
+// include 0.5 and 2 %, levels no learning set held (68.8 %, 93.9 %). Anchors at 0.06 and 0.1 % (learned
+// on the same shapes at those levels) failed held-out 26 (97.2 % at 95 %: too wide), so below 0.17 %
+// the factor stays 1 (docs/analysis.md, "Intervals below the table's lowest noise").
 inline constexpr std::array<NoiseLevelAnchor, 3> precursor_white_anchors{
     {{0.002, 0.6213, 0.8308}, {0.01, 0.8100, 0.8463}, {0.03, 0.8683, 0.9152}}};
-inline constexpr double precursor_white_calibrated_from = 0.0017, precursor_white_calibrated_to = 0.032;
-// x_p's factors for a curve scored as white with E_e's white noise at `energy_white_share` of E_max.
-IntervalScales precursor_white_scales(double energy_white_share);
+inline constexpr WhiteLevelScales precursor_white_levels{precursor_white_anchors, 0.0017, 0.032};
+// δ_x's and x_c's white factors (delta_interval_scales, critical_strain_scales) are single and were
+// checked on white noise of 0.2-3 % of the peaks; at 0.06-0.14 % (held-out 26) they were too wide
+// (δ_x 97.6 % at 95 %, x_c 73.8 % at 68 %; docs/analysis.md, "Intervals below the table's lowest
+// noise"). So they are calibrated only where the white noise that sets their spread reaches this share
+// of its peak: F's for x_c (critical_noise_level), the larger of F's and E_e's for δ_x
+// (delay_noise_level). Below it they keep their factors, not calibrated.
+inline constexpr double white_factors_checked_from = 0.0017;
 
 // A strain's intervals (x_c, x_p) and the factors that sized them.
 struct StrainInterval {
@@ -298,16 +312,27 @@ bool scored_as_random_walk(const AnalysisResult& result);
 // scaled intervals covered 24-50 % at 68 % (docs/analysis.md, "Known limits"): x_c's interval is
 // then marked not calibrated, with a warning where it would otherwise have been.
 bool force_walk_hidden(const AnalysisResult& result);
-// E_e's white noise in the bootstrap window as a share of E_max (the level x_p's white factors
-// follow); NaN without E_max or where it is 0.
+// E_e's white noise in the bootstrap window as a share of E_max (the level x_p's and δ_x's white
+// factors follow); NaN without E_max or where it is 0.
 double energy_white_share(const AnalysisResult& result);
-// The level x_p's interval factors follow: energy_white_share on a curve scored as white where it is
+// The level x_p's white factors follow: energy_white_share on a curve scored as white where it is
 // measured; none on a walk or without E_max (x_p then takes precursor_strain_scales).
 std::optional<double> precursor_noise_level(const AnalysisResult& result);
+// F's white noise in the bootstrap window over F_c on a curve scored as white (x_c's level); none on a
+// walk or without F_c.
+std::optional<double> critical_noise_level(const AnalysisResult& result);
+// The larger of precursor_noise_level and critical_noise_level where measured (δ_x's level: either
+// curve's noise can set its spread); none where neither is.
+std::optional<double> delay_noise_level(const AnalysisResult& result);
 // x_p's interval factors for a result: the walk's for a curve scored as a random walk
-// (precursor_strain_scales), else those that follow E_e's measured white noise (precursor_white_scales;
+// (precursor_strain_scales), else those that follow E_e's measured white noise (precursor_white_levels;
 // 1, not calibrated, without E_max).
 IntervalScales precursor_scales(const AnalysisResult& result, bool walk_profile);
+// δ_x's and x_c's interval factors: their kind's (delta_interval_scales, critical_strain_scales); white
+// ones not calibrated where their level (delay_noise_level, critical_noise_level) lies below
+// white_factors_checked_from.
+IntervalScales delay_scales(const AnalysisResult& result, bool walk_profile);
+IntervalScales critical_scales(const AnalysisResult& result, bool walk_profile);
 // A noise kind in words, as analysis.json, the terminal and the calibration files write it.
 std::string_view noise_name(bool random_walk);
 // The kind the intervals take, in words, as written to analysis.json beside the factors.

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -66,17 +67,26 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
     fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}]{})\n", name, with_error(*m), interval->ci95_low,
                interval->ci95_high, analysis::calibration_mark(interval->scales.calibrated));
   };
+  // Where a white interval is not calibrated at its measured noise level: the level and the checked range.
+  const auto explain_level = [&](const char* name, const char* noise, std::optional<double> level,
+                                 bool calibrated, const std::string& range) {
+    if (calibrated || !level) return;
+    fmt::print(out, "              ({} {:.3g} %; {}'s factors are calibrated for {})\n", noise,
+               100.0 * *level, name, range);
+  };
+  const std::string checked_range =
+      fmt::format("{:g} % and above", 100.0 * analysis::white_factors_checked_from);
   strain_line("x_c", r.x_c, r.x_c_interval);
+  if (r.x_c_interval)
+    explain_level("x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r),
+                  r.x_c_interval->scales.calibrated || analysis::force_walk_hidden(r), checked_range);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
-  const auto level = analysis::precursor_noise_level(r);
-  if (r.x_p_interval && !r.x_p_interval->scales.calibrated && level) {
-    fmt::print(
-        out,
-        "              (E_e's white noise {:.3g} % of E_max; x_p's factors are calibrated for {:g}-{:g} %)\n",
-        100.0 * *level, 100.0 * analysis::precursor_white_calibrated_from,
-        100.0 * analysis::precursor_white_calibrated_to);
-  }
+  if (r.x_p_interval)
+    explain_level("x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
+                  r.x_p_interval->scales.calibrated,
+                  fmt::format("{:g}-{:g} %", 100.0 * analysis::precursor_white_levels.calibrated_from,
+                              100.0 * analysis::precursor_white_levels.calibrated_to));
   line("Erate_max", r.Erate_max);
   line("x_m", r.x_m);
   line("E_max", r.E_max);
@@ -85,6 +95,10 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
     fmt::print(out, "  delta_x     {:.6g} ± {:.2g} {} ({}; 68 % [{:.6g}, {:.6g}], 95 % [{:.6g}, {:.6g}]{})\n",
                d.mean, d.sd, r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high,
                d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales.calibrated));
+    if (r.delay_method == analysis::DelayMethod::fitted_maxima)
+      explain_level("delta_x",
+                    "the larger white noise of F and E_e, share of its peak:", analysis::delay_noise_level(r),
+                    r.interval_scales.calibrated, checked_range);
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);

@@ -476,32 +476,34 @@ TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
   EXPECT_TRUE(plain.x_c_interval->scales.calibrated);
 }
 
-// x_p's white factors: the anchors at their shares, linear in log share between them (so the
-// geometric mean of two shares gets the mean of their factors), the end anchors beyond them,
-// calibrated only inside the learning curves' range, and 1 below it or where it is not measured.
+// x_p's white factors: the anchors at their shares, linear in log share between them (so the geometric
+// mean of two shares gets the mean of their factors), the end anchors beyond them, calibrated only inside
+// the learning curves' range, and 1 below it or where it is not measured.
 TEST(IntervalScales, PrecursorWhiteFactorsFollowTheMeasuredNoiseLevel) {
-  for (const auto& a : precursor_white_anchors) {
-    const auto at = precursor_white_scales(a.share);
+  const auto& model = precursor_white_levels;
+  for (const auto& a : model.anchors) {
+    const auto at = white_level_scales(model, a.share);
     EXPECT_DOUBLE_EQ(at.level68, a.level68);
     EXPECT_DOUBLE_EQ(at.level95, a.level95);
     EXPECT_TRUE(at.calibrated);
   }
-  const auto &low = precursor_white_anchors[0], &high = precursor_white_anchors[1];
-  const auto between = precursor_white_scales(std::sqrt(low.share * high.share));
+  const auto &low = model.anchors[0], &high = model.anchors[1];
+  const auto between = white_level_scales(model, std::sqrt(low.share * high.share));
   EXPECT_NEAR(between.level68, 0.5 * (low.level68 + high.level68), 1e-12);
   EXPECT_NEAR(between.level95, 0.5 * (low.level95 + high.level95), 1e-12);
-  for (std::size_t i = 1; i < precursor_white_anchors.size(); ++i)
-    EXPECT_GT(precursor_white_anchors[i].level68, precursor_white_anchors[i - 1].level68)
-        << "rises with noise";
-  const auto quiet_end = precursor_white_scales(0.001), loud_end = precursor_white_scales(0.05);
+  for (std::size_t i = 1; i < model.anchors.size(); ++i)
+    EXPECT_GT(model.anchors[i].level68, model.anchors[i - 1].level68) << "rises with noise";
+  ASSERT_LT(model.calibrated_from, low.share);
+  const auto lowest = white_level_scales(model, model.calibrated_from);
+  EXPECT_TRUE(lowest.calibrated);
+  EXPECT_EQ(lowest.level68, low.level68) << "held at the lowest anchor";
+  const auto quiet_end = white_level_scales(model, 0.001), loud_end = white_level_scales(model, 0.05);
   EXPECT_EQ(quiet_end.level68, 1.0) << "below the checked range: the bootstrap's own sd";
-  EXPECT_EQ(precursor_white_scales(0.0018).level68, low.level68) << "held at the lowest anchor";
-  EXPECT_EQ(loud_end.level95, precursor_white_anchors.back().level95);
   EXPECT_FALSE(quiet_end.calibrated);
+  EXPECT_EQ(loud_end.level95, model.anchors.back().level95);
   EXPECT_FALSE(loud_end.calibrated);
-  EXPECT_TRUE(precursor_white_scales(precursor_white_calibrated_from).calibrated);
-  EXPECT_FALSE(precursor_white_scales(0.0).calibrated);
-  EXPECT_EQ(precursor_white_scales(std::nan("")).level68, 1.0);
+  EXPECT_FALSE(white_level_scales(model, 0.0).calibrated);
+  EXPECT_EQ(white_level_scales(model, std::nan("")).level68, 1.0);
 }
 
 // x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
@@ -536,9 +538,31 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   // x_p's white factors follow E_e's measured white noise: about 1 % of E_max here.
   const double share = energy_white_share(white);
   EXPECT_NEAR(share, 0.01, 0.002);
-  EXPECT_EQ(white.x_p_interval->scales.level68, precursor_white_scales(share).level68);
+  EXPECT_EQ(white.x_p_interval->scales.level68, white_level_scales(precursor_white_levels, share).level68);
   EXPECT_TRUE(white.x_p_interval->scales.calibrated);
+  EXPECT_EQ(white.interval_scales.level68, delta_interval_scales.white_noise.level68);
+  EXPECT_TRUE(white.interval_scales.calibrated && white.x_c_interval->scales.calibrated);
   EXPECT_EQ(bundle.x_p_interval->scales.level68, precursor_strain_scales.random_walk_profile.level68);
+  // At 0.08 % white noise, below the 0.2-3 % the white factors were checked on (held-out 26 found them
+  // too wide there), δ_x's and x_c's intervals keep their white factors and say they are not calibrated;
+  // x_p's take the bootstrap's own sd. analysis.json gives each interval's level.
+  const auto quiet_white = analyze_curve(white_noise_curve(weibull(3), 1000, 0.0008, 7), {});
+  ASSERT_TRUE(quiet_white.accepted) << quiet_white.rejection;
+  ASSERT_FALSE(scored_as_random_walk(quiet_white));
+  const auto force_level = critical_noise_level(quiet_white), delay_level = delay_noise_level(quiet_white);
+  ASSERT_TRUE(force_level && delay_level);
+  EXPECT_NEAR(*force_level, 0.0008, 0.0003);
+  EXPECT_EQ(*delay_level, std::max(*force_level, energy_white_share(quiet_white)));
+  EXPECT_LT(*delay_level, white_factors_checked_from);
+  EXPECT_EQ(quiet_white.interval_scales.level68, delta_interval_scales.white_noise.level68);
+  EXPECT_FALSE(quiet_white.interval_scales.calibrated);
+  EXPECT_EQ(quiet_white.x_c_interval->scales.level95, critical_strain_scales.white_noise.level95);
+  EXPECT_FALSE(quiet_white.x_c_interval->scales.calibrated);
+  EXPECT_EQ(quiet_white.x_p_interval->scales.level68, 1.0);
+  const auto j = to_json(quiet_white);
+  EXPECT_EQ(j["delta_x"]["interval_scales"]["white_share"].get<double>(), *delay_level);
+  EXPECT_EQ(j["x_c"]["interval_scales"]["force_white_share"].get<double>(), *force_level);
+  EXPECT_FALSE(j["delta_x"]["interval_scales"]["calibrated"].get<bool>());
   AnalysisOptions unscaled;
   unscaled.calibrated_intervals = false;
   const auto own = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), unscaled);

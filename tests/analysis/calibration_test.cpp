@@ -105,7 +105,7 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
 
 // The CI share of the white-noise groups: five shapes of the table at 300 and 1000 rows with white noise of
 // 0.5 % and 2 % of each peak, levels between the calibration table's (x_p's factors interpolate
-// there, analysis.hpp precursor_white_scales). 60 curves, bounds ± 4 binomial sd as above: a guard
+// there, analysis.hpp precursor_white_levels). 60 curves, bounds ± 4 binomial sd as above: a guard
 // against an interval a third too narrow or too wide, for every interval that says it is calibrated.
 TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
   using namespace calibration;

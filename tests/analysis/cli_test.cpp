@@ -79,10 +79,17 @@ TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   // x_p's interval is ± sd, not calibrated, and both outputs say at which level.
   const double share = j["x_p"]["interval_scales"]["energy_white_share"].get<double>();
   EXPECT_GT(share, 0.5e-4);
-  EXPECT_LT(share, precursor_white_calibrated_from);
+  EXPECT_LT(share, precursor_white_levels.calibrated_from);
   EXPECT_FALSE(j["x_p"]["interval_scales"]["calibrated"].get<bool>());
   EXPECT_EQ(j["x_p"]["interval_scales"]["ci68"].get<double>(), 1.0);
-  EXPECT_NE(r.out.find("of E_max; x_p's factors are calibrated for 0.17-3.2 %)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x_p's factors are calibrated for 0.17-3.2 %)"), std::string::npos) << r.out;
+  // δ_x's level is the larger of F's and E_e's white noise, ~0.8 % here (F's), as is x_c's (F's):
+  // both within the range their white factors were checked on, so calibrated.
+  EXPECT_GT(j["delta_x"]["interval_scales"]["white_share"].get<double>(), 0.002);
+  EXPECT_EQ(j["x_c"]["interval_scales"]["force_white_share"].get<double>(),
+            j["delta_x"]["interval_scales"]["white_share"].get<double>());
+  EXPECT_TRUE(j["delta_x"]["interval_scales"]["calibrated"].get<bool>());
+  EXPECT_TRUE(j["x_c"]["interval_scales"]["calibrated"].get<bool>());
   EXPECT_EQ(j["delta_x"]["interval_scales"]["ci68"].get<double>(), delta_interval_scales.white_noise.level68);
   EXPECT_EQ(j["delta_x"]["interval_scales"]["ci95"].get<double>(), delta_interval_scales.white_noise.level95);
   EXPECT_LE(j["delta_x"]["ci95"][0].get<double>(), j["delta_x"]["ci68"][0].get<double>());
