@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -226,6 +227,19 @@ bool interval_calibrated(const json& delta) {
   return delta.contains("interval_scales") && delta["interval_scales"].value("calibrated", false);
 }
 
+// Nothing where δ_x's intervals are calibrated; else that they are not, and why where the reason is
+// the curve's white noise below the level from which the white factors were checked.
+std::string uncalibrated_because(const json& delta) {
+  if (interval_calibrated(delta)) return "";
+  const auto& scales = delta.value("interval_scales", json::object());
+  const double level = scales.value("white_share", std::numeric_limits<double>::quiet_NaN());
+  if (!(level < analysis::white_factors_checked_from)) return "; its intervals are not calibrated";
+  return fmt::format(
+      "; its intervals are not calibrated: the curve's white noise, {} % of its peak, lies below the {:g} % "
+      "from which the white factors were checked (docs/analysis.md)",
+      number_text(100.0 * level), 100.0 * analysis::white_factors_checked_from);
+}
+
 std::string run_summary(const json& analysis) {
   if (analysis.is_null()) {
     return "<p class=\"summary\">Not analysed yet: run <code>rupture analyze curves.csv</code> in this "
@@ -293,7 +307,7 @@ std::string analysis_section(const json& analysis) {
     html +=
         "<p>Distribution of δ<sub>x</sub> (bootstrap replicates, or the posterior of the shift-l1 "
         "method)" +
-        std::string(interval_calibrated(delta) ? "" : "; its intervals are not calibrated") + ":</p>\n";
+        uncalibrated_because(delta) + ":</p>\n";
     html += table({"mode / estimate", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
                   {{number_text(delta["map"].get<double>()), number_text(delta["mean"].get<double>()),
                     number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()),

@@ -39,6 +39,7 @@ using rupture::testing::shell_quoted;
 using rupture::testing::slurp;
 using rupture::testing::TempDir;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const std::string examples = RUPTURE_EXAMPLES_DIR;
 
@@ -235,6 +236,29 @@ TEST(Report, HtmlCheckerCatchesBrokenPages) {
   const auto facts =
       check_well_formed("<!DOCTYPE html>\n<html><body><a href=\"figures/loading.png\">x</a></body></html>");
   EXPECT_EQ(facts.references, std::vector<std::string>{"figures/loading.png"});
+}
+
+// Where δ_x's intervals are not calibrated because the curve's white noise lies below the level from
+// which the white factors were checked (analysis.json's delta_x.interval_scales.white_share), the report
+// says so with the level; other uncalibrated intervals get the plain mark.
+TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
+  TempDir dir;
+  const auto run = analysed_block_run(dir);
+  auto analysis = nlohmann::json::parse(slurp(run / "analysis.json"));
+  auto& scales = analysis.at("delta_x").at("interval_scales");
+  scales["calibrated"] = false;
+  scales["white_share"] = 0.0009;
+  io::write_json_atomically(run / "analysis.json", analysis);
+  ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
+  EXPECT_THAT(check_well_formed(slurp(run / "report.html")).body_text,
+              HasSubstr("its intervals are not calibrated: the curve's white noise, 0.09 % of its peak, lies "
+                        "below the 0.17 % from which the white factors were checked"));
+  scales.erase("white_share");
+  io::write_json_atomically(run / "analysis.json", analysis);
+  ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
+  const auto plain = check_well_formed(slurp(run / "report.html")).body_text;
+  EXPECT_THAT(plain, HasSubstr("its intervals are not calibrated:"));
+  EXPECT_THAT(plain, Not(HasSubstr("white factors were checked")));
 }
 
 TEST(Report, RunReportIsSelfContainedWithNumbersAndConfig) {
