@@ -42,12 +42,12 @@ f = lambda k: (j.get(k) or {}).get("value", float("nan"))
 x_p = j.get("x_p") or {}
 white = ((j.get("uncertainty") or {}).get("noise") or {}).get("elastic_energy", {}).get("white_sd", {}).get("value")
 share = 100 * white / f("E_max") if white is not None and f("E_max") > 0 else float("nan")
-calibrated = "" if (x_p.get("interval_scales") or {}).get("calibrated") else " (not calibrated)"
-print("| %s | %s | %d | %s | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f] | %s | %.4f | [%.4f, %.4f]%s | %.3f |" % (
+mark = lambda q: "" if ((q or {}).get("interval_scales") or {}).get("calibrated") else " (not calibrated)"
+print("| %s | %s | %d | %s | %.4f | %.4f | %.4f | %.4f | [%.4f, %.4f]%s | %s | %.4f | [%.4f, %.4f]%s | %.3f |" % (
       sys.argv[2], sys.argv[3], j["resample"]["input_rows"], (d.get("interval_scales") or {}).get("noise", "-"),
       f("x_p"), f("x_c"), d.get("value", float("nan")), d.get("sd", float("nan")),
-      *(d.get("ci95") or [float("nan")] * 2), "yes" if j["accepted"] else "no: " + j["rejection"],
-      x_p.get("error", float("nan")), *(x_p.get("ci95") or [float("nan")] * 2), calibrated, share))
+      *(d.get("ci95") or [float("nan")] * 2), mark(d), "yes" if j["accepted"] else "no: " + j["rejection"],
+      x_p.get("error", float("nan")), *(x_p.get("ci95") or [float("nan")] * 2), mark(x_p), share))
 PY
 }
 for interval in 50 100 200; do run_one 1 "$interval"; done
