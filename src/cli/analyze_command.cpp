@@ -5,7 +5,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -79,7 +78,7 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
   strain_line("x_c", r.x_c, r.x_c_interval);
   if (r.x_c_interval)
     explain_level("x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r),
-                  r.x_c_interval->scales.calibrated || analysis::force_walk_hidden(r), checked_range);
+                  r.x_c_interval->scales.calibrated, checked_range);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
   if (r.x_p_interval)
