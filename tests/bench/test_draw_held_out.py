@@ -1,9 +1,10 @@
 """bench/draw_held_out.py: a seed already drawn prints the rows calibration_set.hpp holds for it, and a
 new seed draws no parameter an earlier set used (docs/analysis.md, "Calibration")."""
-import importlib.util
 import pathlib
 import subprocess
 import sys
+
+import bench_scripts
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCRIPT = ROOT / "bench" / "draw_held_out.py"
@@ -26,10 +27,7 @@ def test_a_drawn_seed_prints_its_rows_again():
 
 
 def load():
-    spec = importlib.util.spec_from_file_location("draw_held_out", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return bench_scripts.load("draw_held_out")
 
 
 def parts(match):

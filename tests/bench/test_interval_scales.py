@@ -1,21 +1,18 @@
 """bench/interval_scales.py: the conformal scales it learns, the shipping rule it applies to a
 check file, and the inputs it refuses (docs/analysis.md, "Calibration")."""
 import csv
-import importlib.util
-import pathlib
 import subprocess
 import sys
 
-SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "bench" / "interval_scales.py"
+import bench_scripts
+
+SCRIPT = bench_scripts.path("interval_scales")
 COLUMNS = ["set", "group", "shape", "noise", "accepted", "delta_x_true", "delta_x", "ci68_low", "ci68_high",
            "ci95_low", "ci95_high"]
 
 
 def load():
-    spec = importlib.util.spec_from_file_location("interval_scales", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return bench_scripts.load("interval_scales")
 
 
 def rows_with_scores(scores68, scores95, noise="random walk", group="bundle N=1e4"):

@@ -1,18 +1,12 @@
 """bench/run_like_curves.py: the grid on the rows' own lattice keeps a run's even rows as they are and
 leaves out only what lies off the lattice (docs/analysis.md, "On DEM runs")."""
-import importlib.util
-import pathlib
 
 import numpy as np
 
-SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "bench" / "run_like_curves.py"
-
+import bench_scripts
 
 def load():
-    spec = importlib.util.spec_from_file_location("run_like_curves", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return bench_scripts.load("run_like_curves")
 
 
 def test_the_lattice_grid_keeps_the_even_rows_and_drops_the_stop_row():

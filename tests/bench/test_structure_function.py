@@ -1,20 +1,17 @@
 """bench/structure_function.py: white noise, a random walk and a ringing each give their own
 structure function, and a file without the named column is refused (docs/analysis.md)."""
-import importlib.util
 import math
-import pathlib
 import random
 import subprocess
 import sys
 
-SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "bench" / "structure_function.py"
+import bench_scripts
+
+SCRIPT = bench_scripts.path("structure_function")
 
 
 def load():
-    spec = importlib.util.spec_from_file_location("structure_function", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return bench_scripts.load("structure_function")
 
 
 def test_white_noise_is_flat_and_a_walk_grows_as_the_lag():
