@@ -202,16 +202,18 @@ IntervalScales white_level_scales(const WhiteLevelScales& model, double energy_w
 // include 0.5 and 2 %, levels no learning set held (68.8 %, 93.9 %). Anchors at 0.06 and 0.1 % (learned
 // on the same shapes at those levels) failed held-out 26 (97.2 % at 95 %: too wide), so below 0.17 %
 // the factor stays 1 (docs/analysis.md, "Intervals below the table's lowest noise").
+// Every white factor was checked on white noise of 0.2-3 % of the peaks, from this share up (the
+// learning curves' 0.5th percentile of their measured level, 0.175 %, rounded down). Below it,
+// δ_x's and x_c's single white factors (delta_interval_scales, critical_strain_scales) were too wide
+// at 0.06-0.14 % (held-out 26: δ_x 97.6 % at 95 %, x_c 73.8 % at 68 %; docs/analysis.md, "Intervals
+// below the table's lowest noise"), so there they keep their factors, not calibrated: at the level
+// that sets their spread, F's for x_c (critical_noise_level), the larger of F's and E_e's for δ_x
+// (delay_noise_level). x_p's take factor 1 there (precursor_white_levels).
+inline constexpr double white_factors_checked_from = 0.0017;
 inline constexpr std::array<NoiseLevelAnchor, 3> precursor_white_anchors{
     {{0.002, 0.6213, 0.8308}, {0.01, 0.8100, 0.8463}, {0.03, 0.8683, 0.9152}}};
-inline constexpr WhiteLevelScales precursor_white_levels{precursor_white_anchors, 0.0017, 0.032};
-// δ_x's and x_c's white factors (delta_interval_scales, critical_strain_scales) are single and were
-// checked on white noise of 0.2-3 % of the peaks; at 0.06-0.14 % (held-out 26) they were too wide
-// (δ_x 97.6 % at 95 %, x_c 73.8 % at 68 %; docs/analysis.md, "Intervals below the table's lowest
-// noise"). So they are calibrated only where the white noise that sets their spread reaches this share
-// of its peak: F's for x_c (critical_noise_level), the larger of F's and E_e's for δ_x
-// (delay_noise_level). Below it they keep their factors, not calibrated.
-inline constexpr double white_factors_checked_from = 0.0017;
+inline constexpr WhiteLevelScales precursor_white_levels{precursor_white_anchors, white_factors_checked_from,
+                                                         0.032};
 
 // A strain's intervals (x_c, x_p) and the factors that sized them.
 struct StrainInterval {

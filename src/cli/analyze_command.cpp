@@ -25,9 +25,8 @@ std::string with_error(const analysis::Measured& m) {
                        : fmt::format("{:.6g} {}", m.value, m.unit);
 }
 
-// The text summary on `out` (stderr when the document itself goes to stdout with -o -).
-void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output, std::FILE* out) {
-  for (const auto& warning : r.warnings) fmt::print(stderr, "rupture analyze: warning: {}\n", warning);
+// What the analysis made of the input: rows, resampling, filter and the noise kind read.
+void print_input(const analysis::AnalysisResult& r, std::FILE* out) {
   fmt::print(out, "{}: {} rows", r.source, r.resample.input_rows);
   if (r.resample.resampled || r.resample.duplicates_merged > 0 || r.resample.block_average > 1) {
     fmt::print(
@@ -57,6 +56,19 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
                    : "");
   }
   fmt::print(out, "\n");
+}
+
+// Under an uncalibrated white interval: the noise level it stands at and the range its factors were
+// checked on.
+void print_level_note(std::FILE* out, const char* name, const char* noise, std::optional<double> level,
+                      bool calibrated, const std::string& checked) {
+  if (calibrated || !level) return;
+  fmt::print(out, "              ({} {:.3g} %; {}'s factors are calibrated for {})\n", noise, 100.0 * *level,
+             name, checked);
+}
+
+// The measured numbers, each strain's and δ_x's 95 % interval marked where it is not calibrated.
+void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
   const auto line = [out](const char* name, const std::optional<analysis::Measured>& m) {
     fmt::print(out, "  {:<11} {}\n", name, m ? with_error(*m) : std::string("not found"));
   };
@@ -66,26 +78,19 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
     fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}]{})\n", name, with_error(*m), interval->ci95_low,
                interval->ci95_high, analysis::calibration_mark(interval->scales.calibrated));
   };
-  // Where a white interval is not calibrated at its measured noise level: the level and the checked range.
-  const auto explain_level = [&](const char* name, const char* noise, std::optional<double> level,
-                                 bool calibrated, const std::string& range) {
-    if (calibrated || !level) return;
-    fmt::print(out, "              ({} {:.3g} %; {}'s factors are calibrated for {})\n", noise,
-               100.0 * *level, name, range);
-  };
-  const std::string checked_range =
+  const std::string from_level =
       fmt::format("{:g} % and above", 100.0 * analysis::white_factors_checked_from);
   strain_line("x_c", r.x_c, r.x_c_interval);
   if (r.x_c_interval)
-    explain_level("x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r),
-                  r.x_c_interval->scales.calibrated, checked_range);
+    print_level_note(out, "x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r),
+                     r.x_c_interval->scales.calibrated, from_level);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
   if (r.x_p_interval)
-    explain_level("x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
-                  r.x_p_interval->scales.calibrated,
-                  fmt::format("{:g}-{:g} %", 100.0 * analysis::precursor_white_levels.calibrated_from,
-                              100.0 * analysis::precursor_white_levels.calibrated_to));
+    print_level_note(out, "x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
+                     r.x_p_interval->scales.calibrated,
+                     fmt::format("{:g}-{:g} %", 100.0 * analysis::precursor_white_levels.calibrated_from,
+                                 100.0 * analysis::precursor_white_levels.calibrated_to));
   line("Erate_max", r.Erate_max);
   line("x_m", r.x_m);
   line("E_max", r.E_max);
@@ -95,12 +100,18 @@ void print_summary(const analysis::AnalysisResult& r, const std::filesystem::pat
                d.mean, d.sd, r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high,
                d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales.calibrated));
     if (r.delay_method == analysis::DelayMethod::fitted_maxima)
-      explain_level("delta_x",
-                    "the larger white noise of F and E_e, share of its peak:", analysis::delay_noise_level(r),
-                    r.interval_scales.calibrated, checked_range);
+      print_level_note(out, "delta_x", "the larger white noise of F and E_e, share of its peak:",
+                       analysis::delay_noise_level(r), r.interval_scales.calibrated, from_level);
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);
+}
+
+// The text summary on `out` (stderr when the document itself goes to stdout with -o -).
+void print_summary(const analysis::AnalysisResult& r, const std::filesystem::path& output, std::FILE* out) {
+  for (const auto& warning : r.warnings) fmt::print(stderr, "rupture analyze: warning: {}\n", warning);
+  print_input(r, out);
+  print_numbers(r, out);
   if (r.alpha.alpha)
     fmt::print(out, "  alpha       {:.3g} (from delta_x/x_p, FBM power law)\n", *r.alpha.alpha);
   if (r.alpha.gamma_in_band || r.alpha.energy_ratio_in_band) {
