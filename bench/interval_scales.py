@@ -145,9 +145,10 @@ def factor(row, level, scales):
     if not shares:
         sys.exit(f"{row['source']}: no white group to anchor level-following factors on; learn on files with "
                  "\"white X %\" groups or give anchors with --use \"white@SHARE=S68,S95\"")
-    if "energy_white_share" not in row:
-        sys.exit(f"{row['source']}: no energy_white_share for a curve scored with level-following factors; "
-                 "give files from held-out-22-edge on")
+    for column in ("energy_white_share",) + (("force_white_share",) if LEVEL_FROM_BOTH else ()):
+        if column not in row:
+            sys.exit(f"{row['source']}: no {column} for a curve scored with level-following factors; "
+                     "give files from held-out-22-edge on")
     try:
         share = float(row["energy_white_share"])
         if LEVEL_FROM_BOTH:

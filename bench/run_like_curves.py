@@ -14,6 +14,7 @@ and δ_x's interval coverage for both. Needs numpy.
 """
 import json
 import pathlib
+import shutil
 import subprocess
 import sys
 
@@ -41,6 +42,9 @@ def write(path, x, force, energy):
 
 def main(argv):
     rupture, k, noise, every, seeds = argv[1], float(argv[2]), float(argv[3]), int(argv[4]), int(argv[5])
+    if not shutil.which(rupture):
+        sys.exit(f"run_like_curves.py: no program '{rupture}'; give the path of a built rupture, e.g. "
+                 "build/release/bin/rupture")
     work = pathlib.Path(argv[6] if len(argv) > 6 else "/tmp/run-like-curves")
     work.mkdir(parents=True, exist_ok=True)
     force = lambda x: x * np.exp(-x ** k)
@@ -56,17 +60,22 @@ def main(argv):
     x = np.where(steps < ramp, speed * steps ** 2 / (2 * ramp), speed * (steps - ramp / 2))
     delta = x_c - x_p
     results = {"as written": [], "rows' lattice": []}
+    stems = {"as written": "written", "rows' lattice": "lattice"}
     for seed in range(seeds):
         rng = np.random.default_rng(seed)
         f = force(x) + noise * F_c * rng.standard_normal(len(x))
         e = energy(x) + noise * E_max * rng.standard_normal(len(x))
         grid, (gf, ge) = lattice_grid(x, [f, e])
         for kind, (xs, fs, es) in (("as written", (x, f, e)), ("rows' lattice", (grid, gf, ge))):
-            path = work / f"{kind.split()[0].strip(chr(39))}-{seed}.csv"
+            path = work / f"{stems[kind]}-{seed}.csv"
+            document = work / f"{stems[kind]}-{seed}.json"
             write(path, xs, fs, es)
-            subprocess.run([rupture, "analyze", str(path), "-o", str(path) + ".json"], capture_output=True,
-                           check=False)
-            j = json.loads(pathlib.Path(str(path) + ".json").read_text(encoding="utf-8"))
+            done = subprocess.run([rupture, "analyze", str(path), "-o", str(document)], capture_output=True,
+                                  text=True, check=False)
+            if done.returncode not in (0, 4):  # 4: analysed and rejected
+                sys.exit(f"run_like_curves.py: {rupture} analyze {path} failed ({done.returncode}): "
+                         f"{done.stderr.strip()}; give the path of a built rupture")
+            j = json.loads(document.read_text(encoding="utf-8"))
             results[kind].append(j if j["accepted"] else None)
     print(f"Weibull k = {k:g}, white noise {100 * noise:g} %, a row every {every} steps ({len(x)} rows), "
           f"{seeds} seeds")

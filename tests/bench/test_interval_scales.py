@@ -153,6 +153,8 @@ def test_anchors_given_with_use_score_each_curve_at_its_level(tmp_path):
     no_share = write(tmp_path / "no-share.csv", rows_with_scores([0.5] * 2, [0.5] * 2, noise="white"))
     missing = run(no_share, "--use", "white@0.002=0.6,1")
     assert missing.returncode != 0 and "no energy_white_share" in missing.stderr
+    no_force = run(str(path), "--level-from-both", "--use", "white@0.002=0.6,1", "--check", str(path))
+    assert no_force.returncode != 0 and "no force_white_share" in no_force.stderr, no_force.stderr
 
 
 def test_a_share_option_without_a_number_is_refused_with_an_example(tmp_path):
