@@ -3,6 +3,8 @@
 and on a grid aligned with their rows (docs/analysis.md, "On DEM runs").
 
 Usage: run_like_curves.py RUPTURE K NOISE ROWS_EVERY SEEDS [WORKDIR]
+       run_like_curves.py --lattice CURVES.csv OUT.csv   (any table with a strain[...] column, such as a
+                                                       run's curves.csv: OUT holds it on the rows' lattice)
 
 Weibull ELS curves F = x exp(-x^K), E_e = F x / 2, with white noise of NOISE (a share of each peak)
 on each, a row every ROWS_EVERY steps of a plate that starts smoothly (strain ∝ steps² over the first
@@ -31,6 +33,25 @@ def lattice_grid(x, columns):
     last = int(np.floor((x[-1] - anchor) / step + 1e-9))
     grid = anchor + np.arange(first, last + 1) * step
     return grid, [np.interp(grid, x, c) for c in columns]
+
+
+def write_on_lattice(source, target):
+    """A comma-separated table with a strain[...] column, '#' comment lines kept, on its rows' lattice."""
+    lines = pathlib.Path(source).read_text(encoding="utf-8").splitlines()
+    comments = [line for line in lines if line.startswith("#")]
+    table = [line for line in lines if line and not line.startswith("#")]
+    header = table[0].split(",")
+    strain = next((i for i, name in enumerate(header) if name.startswith("strain")), None)
+    if strain is None:
+        sys.exit(f"run_like_curves.py: {source}: no strain[...] column in the header; give a curves.csv")
+    rows = np.array([[float(v) for v in line.split(",")] for line in table[1:]])
+    grid, columns = lattice_grid(rows[:, strain], [rows[:, c] for c in range(rows.shape[1])])
+    columns[strain] = grid
+    with open(target, "w", encoding="utf-8") as f:
+        f.write("\n".join(comments + [table[0]]) + "\n")
+        for row in zip(*columns):
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+    print(f"{target}: {len(table) - 1} rows -> {len(grid)} on the rows' lattice")
 
 
 def write(path, x, force, energy):
@@ -94,6 +115,9 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) < 6:
+    if len(sys.argv) == 4 and sys.argv[1] == "--lattice":
+        write_on_lattice(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) < 6:
         sys.exit(__doc__)
-    main(sys.argv)
+    else:
+        main(sys.argv)
