@@ -61,6 +61,17 @@ def write(path, x, force, energy):
             f.write("%r,%r,%r\n" % row)
 
 
+def analyse(rupture, path, document, script):
+    """`rupture analyze PATH -o DOCUMENT`: its analysis.json, or None where the curve was rejected."""
+    done = subprocess.run([rupture, "analyze", str(path), "-o", str(document)], capture_output=True, text=True,
+                          check=False)
+    if done.returncode not in (0, 4):  # 4: analysed and rejected
+        sys.exit(f"{script}: {rupture} analyze {path} failed ({done.returncode}): {done.stderr.strip()}; give "
+                 "the path of a built rupture")
+    j = json.loads(pathlib.Path(document).read_text(encoding="utf-8"))
+    return j if j["accepted"] else None
+
+
 def main(argv):
     rupture, k, noise, every, seeds = argv[1], float(argv[2]), float(argv[3]), int(argv[4]), int(argv[5])
     if not shutil.which(rupture):
@@ -91,13 +102,7 @@ def main(argv):
             path = work / f"{stems[kind]}-{seed}.csv"
             document = work / f"{stems[kind]}-{seed}.json"
             write(path, xs, fs, es)
-            done = subprocess.run([rupture, "analyze", str(path), "-o", str(document)], capture_output=True,
-                                  text=True, check=False)
-            if done.returncode not in (0, 4):  # 4: analysed and rejected
-                sys.exit(f"run_like_curves.py: {rupture} analyze {path} failed ({done.returncode}): "
-                         f"{done.stderr.strip()}; give the path of a built rupture")
-            j = json.loads(document.read_text(encoding="utf-8"))
-            results[kind].append(j if j["accepted"] else None)
+            results[kind].append(analyse(rupture, path, document, "run_like_curves.py"))
     print(f"Weibull k = {k:g}, white noise {100 * noise:g} %, a row every {every} steps ({len(x)} rows), "
           f"{seeds} seeds")
     print("| grid | accepted | x_p rms error | δ_x rms error | δ_x 68 % / 95 % covered |\n|---|---|---|---|---|")

@@ -189,6 +189,7 @@ struct PeakSearch {
   int derivative_window = 7;
   PeakFitOptions peak;
   double collapse_fraction = 0.25;
+  std::size_t collapse_width = 0;  // the widest drop taken for a sharp collapse (samples; 0: none)
   // Samples at either end that the fits leave out: a bootstrap window's padding, where the filter's
   // and the derivative's edge effects live.
   std::size_t margin_low = 0, margin_high = 0;
@@ -232,6 +233,62 @@ std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_
   return filtered_force.size() - 1;
 }
 
+// A collapse sharper than the filter can follow: after the force peak the raw force falls from
+// above twice `collapse_level` to below it within `width` samples (collapse_width). A low-pass spreads
+// such a drop backwards with an overshoot: ℰ, the derivative, then peaks on the filter's response
+// just before the collapse, above any slope the rows hold, and F's peak is lifted there too
+// (known-answer Weibull curves cut at 1.05-1.35 x_c: x_p found at the cut where it is 0.49;
+// docs/analysis.md, "A collapse the filter cannot follow"). The onset is where the drop begins: from
+// the last sample above twice the level, back while the raw force still falls. Nothing where the
+// collapse is gradual or absent.
+std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::size_t force_top,
+                                                double collapse_level, std::size_t width) {
+  std::size_t fallen = force_top + 1;
+  while (fallen < force.size() && force[fallen] >= collapse_level) ++fallen;
+  if (fallen >= force.size() || width == 0) return std::nullopt;
+  const std::size_t start = fallen > width ? fallen - width : 0;
+  if (force[start] < 2.0 * collapse_level) return std::nullopt;
+  std::size_t onset = fallen - 1;
+  while (force[onset] < 2.0 * collapse_level) --onset;
+  while (onset > start && force[onset - 1] > force[onset]) --onset;
+  return onset;
+}
+
+// The filtered force's largest sample under `filter`: where and how high.
+struct ForceTop {
+  std::size_t index = 0;
+  double value = 0.0;
+};
+ForceTop filtered_force_top(std::span<const double> force, FilterSettings filter) {
+  const auto filtered = apply_filter(filter, force);
+  const auto top = std::max_element(filtered.begin(), filtered.end());
+  return {static_cast<std::size_t>(top - filtered.begin()), *top};
+}
+
+// The widest drop (samples) taken for a collapse: one period of the filter's cutoff (a slower one
+// the filter follows) and a twentieth of the rise to the force peak (a slower one is the curve's own
+// decline: a finite bundle recorded far past its peak falls gradually, and its strong filter's
+// period can span that fall).
+std::size_t collapse_width(std::size_t force_top, const FilterSettings& filter) {
+  return std::min(2 * edge_samples(filter), force_top / 20);
+}
+
+// The loading and the collapse filtered each on its own, split at the onset (each piece's end padding
+// continues it), so that the drop's response does not reach back into the loading. A piece too short
+// for the filter stays raw; a loading too short leaves the whole record's filtering.
+void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
+                        std::vector<double>& filtered) {
+  const std::size_t need = minimum_samples(filter);
+  if (onset + 1 < need) return;
+  const auto place = [&](std::span<const double> piece, std::size_t at) {
+    const auto smooth =
+        piece.size() < need ? std::vector<double>(piece.begin(), piece.end()) : apply_filter(filter, piece);
+    std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(at));
+  };
+  place(raw.first(onset + 1), 0);
+  place(raw.subspan(onset + 1), onset + 1);
+}
+
 // ℰ of a loading from rest rises from 0. Where it falls from the start of the search instead, and
 // that start lies within the filter's edge of the filtered series' first sample, the edge is showing:
 // the filtered E_e follows the padding pinned to the first noisy sample, and its slope can beat the
@@ -257,16 +314,29 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   FilterSettings filter = search.filter;
   m.filtered_force = apply_filter(filter, force);
   m.filtered_energy = apply_filter(filter, energy);
-  const double step = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
-  m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
   const std::size_t first = std::min(search.margin_low, xs.size() - 1);
   const std::size_t last = xs.size() - 1 - std::min(search.margin_high, xs.size() - 1 - first);
   const auto inner = [&](std::span<const double> y, std::size_t end) {
     return y.subspan(first, end - first + 1);
   };
-  m.force = fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak);
-  m.force_fit_error = fit_window_error(inner(xs, last), inner(m.filtered_force, last), m.force, search.peak);
-  m.force.index += first;
+  const auto fit_force = [&] {
+    m.force = fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak);
+    m.force_fit_error =
+        fit_window_error(inner(xs, last), inner(m.filtered_force, last), m.force, search.peak);
+    m.force.index += first;
+  };
+  fit_force();
+  const std::optional<std::size_t> onset =
+      m.force.found ? sharp_collapse_onset(force, m.force.index, search.collapse_fraction * m.force.value,
+                                           search.collapse_width)
+                    : std::nullopt;
+  if (onset) {
+    filter_either_side(filter, force, *onset, m.filtered_force);
+    filter_either_side(filter, energy, *onset, m.filtered_energy);
+    fit_force();
+  }
+  const double step = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
+  m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
   m.phase_end = std::min(last, loading_phase_end(m.filtered_force, m.force.index, search.collapse_fraction));
   // E_e often peaks right at the collapse: its fit may reach min_side samples past the phase.
   const std::size_t energy_end = std::min(last, m.phase_end + search.peak.min_side);
@@ -275,8 +345,12 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   // noise is several times the interior's: on a noisy curve they would win the maximum.
   const auto half = static_cast<std::size_t>(search.derivative_window / 2);
   const std::size_t inner_first = std::max(first, std::min(half, m.phase_end));
+  // Before a sharp collapse the derivative's window stops short of the onset: a cubic over the corner
+  // overshoots.
+  const std::size_t loading_last =
+      onset ? std::min(m.phase_end, *onset - std::min(half, *onset)) : m.phase_end;
   const std::size_t rate_end =
-      std::max(inner_first, std::min(m.phase_end, xs.size() - 1 - std::min(half, xs.size() - 1)));
+      std::max(inner_first, std::min(loading_last, xs.size() - 1 - std::min(half, xs.size() - 1)));
   const std::size_t edge = edge_samples(filter);
   const std::size_t rate_first = search.past_filter_edge
                                      ? past_the_filters_edge(m.energy_rate, inner_first, rate_end, edge)
@@ -593,6 +667,26 @@ void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share
   r.energy_noise = noise_from_differences(g.energy());
 }
 
+// 2'. Where the record ends in a collapse the filter cannot follow (sharp_collapse_onset, found with the
+// whole record's choice), the noise is read and the filter chosen on the loading alone, the rows up
+// to the onset: on the whole record the discrepancy rule must follow the drop too and chooses a far
+// weaker filter (known-answer Weibull curves cut at 1.35 x_c: cutoff 0.13-0.17 against 0.028 uncut).
+void choose_filter_for_loading(const Grid& g, FilterSettings& filter, double smoothing_share,
+                               double collapse_fraction, AnalysisResult& r) {
+  if (!chooses_own_strength(filter)) return choose_filter(g, filter, smoothing_share, r);
+  FilterSettings whole = filter;
+  AnalysisResult pilot;
+  choose_filter(g, whole, smoothing_share, pilot);
+  const ForceTop top = filtered_force_top(g.force(), whole);
+  const auto onset = sharp_collapse_onset(g.force(), top.index, collapse_fraction * top.value,
+                                          collapse_width(top.index, whole));
+  if (!onset || *onset + 1 < minimum_samples(whole)) return choose_filter(g, filter, smoothing_share, r);
+  Grid loading = g;
+  for (auto& y : loading.curves.y) y.resize(*onset + 1);
+  loading.xs.resize(*onset + 1);
+  choose_filter(loading, filter, smoothing_share, r);
+}
+
 std::string rate_unit_of(const AnalysisResult& r) { return per_strain(r.energy_unit, r.strain_unit); }
 
 // 4. The maxima found inside the loading phase, as values without errors: the bootstrap (step 6)
@@ -849,13 +943,15 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
-  choose_filter(g, options.filter, options.random_walk_smoothing_share, r);  // 2
+  choose_filter_for_loading(g, options.filter, options.random_walk_smoothing_share,
+                            options.acceptance.collapse_fraction, r);  // 2
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
   const PeakSearch search{
       .filter = r.filter,
       .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
       .peak = options.peak,
       .collapse_fraction = options.acceptance.collapse_fraction,
+      .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index, r.filter),
       .past_filter_edge = true};
   r.derivative_window = search.derivative_window;
   const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
@@ -1139,6 +1235,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
                    {"duplicates_merged", r.resample.duplicates_merged},
                    {"was_uniform", r.resample.was_uniform},
                    {"resampled", r.resample.resampled},
+                   {"on_lattice", r.resample.on_lattice},
                    {"output_rows", r.resample.output_rows},
                    {"block_average", r.resample.block_average},
                    {"step", io::quantity(r.resample.step, r.strain_unit)}};

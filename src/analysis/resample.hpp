@@ -14,6 +14,7 @@ struct ResampleReport {
   std::size_t duplicates_merged = 0;  // rows whose strain repeated an earlier one (values averaged)
   bool was_uniform = true;            // spacing equal to within 1e-6 of the mean step
   bool resampled = false;             // linear interpolation onto a uniform grid was needed
+  bool on_lattice = false;            // that grid is the spacing most rows share (their rows kept)
   std::size_t output_rows = 0;
   std::size_t block_average = 1;  // samples averaged into one (average_blocks)
   double step = 0.0;              // grid spacing, strain units
@@ -28,7 +29,8 @@ struct UniformCurves {
 };
 
 // Sorts by strain (stable), averages rows with equal strain, and when the spacing is not uniform
-// interpolates linearly onto a uniform grid over the same range with as many points as distinct
+// interpolates linearly onto a uniform grid: the lattice of the spacing at least half the rows share
+// (those rows kept as they are), else a grid over the same range with as many points as distinct
 // strains. `curves` are columns aligned with `strain`. Needs at least two distinct strains.
 UniformCurves resample_uniform(std::span<const double> strain,
                                std::span<const std::span<const double>> curves, ResampleReport& report);

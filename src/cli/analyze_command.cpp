@@ -33,7 +33,8 @@ void print_input(const analysis::AnalysisResult& r, std::FILE* out) {
         out, " ({}{}{} -> {} uniform rows)",
         r.resample.duplicates_merged > 0 ? fmt::format("{} duplicates merged, ", r.resample.duplicates_merged)
                                          : "",
-        r.resample.resampled ? "resampled" : "uniform",
+        r.resample.resampled ? (r.resample.on_lattice ? "resampled on the rows' lattice" : "resampled")
+                             : "uniform",
         r.resample.block_average > 1 ? fmt::format(", averaged in blocks of {}", r.resample.block_average)
                                      : "",
         r.resample.output_rows);

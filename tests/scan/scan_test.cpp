@@ -391,18 +391,18 @@ TEST(ScanClaims, TheResolvedFitLeavesOutDelaysWhoseIntervalReachesZero) {
 
 TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThreads) {
   TempDir dir;
-  const auto one = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " +
+  const auto one = run_rupture("scan " + shell_quoted(examples + "scan-tissue-small.toml") + " -o " +
                                shell_quoted(dir / "one") + " --jobs 1 --threads 2");
   ASSERT_EQ(one.exit_code, 0) << one.err;
-  const auto two = run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " +
+  const auto two = run_rupture("scan " + shell_quoted(examples + "scan-tissue-small.toml") + " -o " +
                                shell_quoted(dir / "two") + " --jobs 2 --threads 1");
   ASSERT_EQ(two.exit_code, 0) << two.err;
   const ResultsTable table = read_results(dir / "one" / "results.csv");
-  ASSERT_EQ(table.rows.size(), 6u);
+  ASSERT_EQ(table.rows.size(), 4u);
   for (std::size_t c = 0; c < result_columns().size(); ++c)
     EXPECT_EQ(table.header[c], result_columns()[c].header());
   std::size_t accepted = 0;
-  for (std::size_t r = 0; r < 6; ++r) {
+  for (std::size_t r = 0; r < 4; ++r) {
     EXPECT_EQ(table.text(r, "status"), "ok") << table.text(r, "why");
     EXPECT_EQ(table.text(r, "stop_reason"), "separated");
     EXPECT_GT(*table.number(r, "dt"), 0.0);
@@ -431,16 +431,16 @@ TEST(ScanCommand, SmallScanWritesEveryColumnAndTheSamePhysicsForAnyJobsAndThread
   EXPECT_EQ(plan["points"][0]["max_strain"]["unit"], "%");
   EXPECT_EQ(scan["jobs"], 2);
   EXPECT_EQ(scan["threads"], 1);
-  EXPECT_EQ(scan["counts"]["ok"], 6);
+  EXPECT_EQ(scan["counts"]["ok"], 4);
   EXPECT_FALSE(scan["version"].get<std::string>().empty());
   // Run again: nothing left to do, nothing redone.
-  const auto again =
-      run_rupture("scan " + shell_quoted(examples + "scan-block.toml") + " -o " + shell_quoted(dir / "one"));
+  const auto again = run_rupture("scan " + shell_quoted(examples + "scan-tissue-small.toml") + " -o " +
+                                 shell_quoted(dir / "one"));
   EXPECT_NE(again.out.find("0 to run"), std::string::npos) << again.out;
-  EXPECT_FALSE(std::filesystem::exists(dir / "one" / "points" / "kn_100_bd_0.002" / "attempt-2"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "one" / "points" / "kn_1000_bd_0.005" / "attempt-2"));
   const auto status = run_rupture("scan --status " + shell_quoted(dir / "one"));
   EXPECT_EQ(status.exit_code, 0);
-  EXPECT_NE(status.out.find("6 points: 6 done, 0 failed, 0 running, 0 pending"), std::string::npos)
+  EXPECT_NE(status.out.find("4 points: 4 done, 0 failed, 0 running, 0 pending"), std::string::npos)
       << status.out;
 }
 
