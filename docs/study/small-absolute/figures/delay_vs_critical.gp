@@ -1,5 +1,5 @@
-# rupture 0.1.0 (c053cb2) plot /tmp/study2/small-absolute
-# read: /tmp/study2/small-absolute/results.csv
+# rupture 0.1.0 (f5613d0-dirty) plot small-absolute
+# read: small-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,11 +35,11 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "delay_vs_critical.pdf"
   }
-  set title "Delay of failure behind the precursor (44 analysed points)"
+  set title "Delay of failure behind the precursor (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.027133881995990854:62.89366026618375]
-  set yrange [0.0009044627331996953:62.89366026618375]
+  set xrange [0.026943127724019328:61.369638043921896]
+  set yrange [0.0008981042574673111:61.369638043921896]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"
@@ -51,7 +51,7 @@ do for [format in formats] {
   set key tmargin center horizontal box
   unset arrow
   unset label
-  plot "delay_vs_critical.dat" index 0 using 1:2:3:4:5:6 with xyerrorbars pointtype 7 pointsize 1.3 linecolor rgb "#1f77b4" title "DEM runs (68 % intervals; 4 with δ_x ≤ 0 not on log axes)", \
+  plot "delay_vs_critical.dat" index 0 using 1:2:3:4:5:6 with xyerrorbars pointtype 7 pointsize 1.3 linecolor rgb "#1f77b4" title "DEM runs (68 % intervals; 3 with δ_x ≤ 0 not on log axes)", \
     '' index 1 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: δ_x = 0.333 x_c", \
     '' index 2 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: δ_x = 0.206 x_c"
   unset output

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (c053cb2) plot /tmp/study2/small-absolute
-# read: /tmp/study2/small-absolute/results.csv
+# rupture 0.1.0 (f5613d0-dirty) plot small-absolute
+# read: small-absolute/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,11 +35,11 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "energy_ratio_vs_critical.pdf"
   }
-  set title "Energy ratio A_r against critical strain (44 analysed points)"
+  set title "Energy ratio A_r against critical strain (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.026409106039187547:62.89366026618375]
-  set yrange [0:3.9589871256499443]
+  set xrange [0.02639325896872097:61.369638043921896]
+  set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"
@@ -52,8 +52,7 @@ do for [format in formats] {
   unset arrow
   unset label
   plot "energy_ratio_vs_critical.dat" index 0 using 1:2:3:4:5:6 with xyerrorbars pointtype 7 pointsize 1.5 linecolor rgb "#1f77b4" title "Γ < 1", \
-    '' index 1 using 1:2:3:4:5:6 with xyerrorbars pointtype 9 pointsize 1.5 linecolor rgb "#000000" title "Γ > 5", \
-    '' index 2 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: A_r = 1.333", \
-    '' index 3 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: A_r = 0.837"
+    '' index 1 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: A_r = 1.333", \
+    '' index 2 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: A_r = 0.837"
   unset output
 }

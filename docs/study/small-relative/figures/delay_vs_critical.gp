@@ -1,5 +1,5 @@
-# rupture 0.1.0 (c053cb2) plot /tmp/study2/small-relative
-# read: /tmp/study2/small-relative/results.csv
+# rupture 0.1.0 (f5613d0-dirty) plot small-relative
+# read: small-relative/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -38,8 +38,8 @@ do for [format in formats] {
   set title "Delay of failure behind the precursor (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.02425351317705445:108.97657690889493]
-  set yrange [0.00015639799875172074:108.97657690889493]
+  set xrange [0.023857544022077976:111.28221219716158]
+  set yrange [0.0007952514674025992:111.28221219716158]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (c053cb2) plot /tmp/study2/small-relative
-# read: /tmp/study2/small-relative/results.csv
+# rupture 0.1.0 (f5613d0-dirty) plot small-relative
+# read: small-relative/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -38,7 +38,7 @@ do for [format in formats] {
   set title "Energy ratio A_r against critical strain (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.02425351317705445:108.97657690889493]
+  set xrange [0.023857544022077976:111.28221219716158]
   set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics autofreq
@@ -53,8 +53,7 @@ do for [format in formats] {
   unset label
   plot "energy_ratio_vs_critical.dat" index 0 using 1:2:3:4:5:6 with xyerrorbars pointtype 7 pointsize 1.5 linecolor rgb "#1f77b4" title "Γ < 1", \
     '' index 1 using 1:2:3:4:5:6 with xyerrorbars pointtype 5 pointsize 1.5 linecolor rgb "#2ca02c" title "1 ≤ Γ ≤ 5", \
-    '' index 2 using 1:2:3:4:5:6 with xyerrorbars pointtype 9 pointsize 1.5 linecolor rgb "#000000" title "Γ > 5", \
-    '' index 3 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: A_r = 1.333", \
-    '' index 4 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: A_r = 0.837"
+    '' index 2 using 1:2 with lines linewidth line_width linecolor rgb "#d62728" title "FBM, α = 0: A_r = 1.333", \
+    '' index 3 using 1:2 with lines linewidth line_width linecolor rgb "#0000cc" title "FBM, α = 5: A_r = 0.837"
   unset output
 }

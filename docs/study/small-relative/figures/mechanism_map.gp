@@ -1,5 +1,5 @@
-# rupture 0.1.0 (c053cb2) plot /tmp/study2/small-relative
-# read: /tmp/study2/small-relative/results.csv
+# rupture 0.1.0 (f5613d0-dirty) plot small-relative
+# read: small-relative/results.csv
 # Draws mechanism_map.png, mechanism_map.svg and/or mechanism_map.pdf from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -54,9 +54,7 @@ do for [format in formats] {
   plot "mechanism_map.dat" index 0 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#1f77b4" title "brittle", \
     '' index 1 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#d62728" title "hyper-elastic", \
     '' index 2 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile", \
-    '' index 3 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#ff7f0e" title "rejected: ductile-like", \
-    '' index 4 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#555555" title "rejected: peaks not resolved", \
-    '' index 5 using 1:2 with points pointtype 6 pointsize 1.5 linecolor rgb "#aaaaaa" title "not separated, failed or not run", \
-    '' index 6 using 1:2 with points pointtype 3 pointsize 3 linecolor rgb "#000000" title "Γ > 5"
+    '' index 3 using 1:2 with points pointtype 2 pointsize 2 linecolor rgb "#555555" title "rejected: peaks not resolved", \
+    '' index 4 using 1:2 with points pointtype 6 pointsize 1.5 linecolor rgb "#aaaaaa" title "not separated, failed or not run"
   unset output
 }

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (c053cb2) plot /tmp/study2/tissue-absolute
-# read: /tmp/study2/tissue-absolute/results.csv
+# rupture 0.1.0 (f5613d0-dirty) plot tissue-absolute
+# read: tissue-absolute/results.csv
 # Draws mechanism_map.png, mechanism_map.svg and/or mechanism_map.pdf from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -52,6 +52,7 @@ do for [format in formats] {
   unset arrow
   unset label
   plot "mechanism_map.dat" index 0 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#1f77b4" title "brittle", \
-    '' index 1 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile"
+    '' index 1 using 1:2 with points pointtype 7 pointsize 2 linecolor rgb "#2ca02c" title "semi-ductile", \
+    '' index 2 using 1:2 with points pointtype 3 pointsize 3 linecolor rgb "#000000" title "Γ > 5"
   unset output
 }
