@@ -189,7 +189,12 @@ struct PeakSearch {
   int derivative_window = 7;
   PeakFitOptions peak;
   double collapse_fraction = 0.25;
-  std::size_t collapse_width = 0;  // the widest drop taken for a sharp collapse (samples; 0: none)
+  // A sharp collapse (sharp_collapse_onset) is sought within `collapse_width` samples (0: none) of
+  // each measurement's own force peak, so that where the onset falls under the noise is part of a
+  // replicate's spread. Where the data's measurement finds none, it takes `collapse_onset`, the one
+  // its filter was chosen with (choose_filter_for_loading), rather than filter across the collapse.
+  std::size_t collapse_width = 0;
+  std::optional<std::size_t> collapse_onset;
   // Samples at either end that the fits leave out: a bootstrap window's padding, where the filter's
   // and the derivative's edge effects live.
   std::size_t margin_low = 0, margin_high = 0;
@@ -204,6 +209,7 @@ struct PeakMeasurement {
   PeakFit force, energy, rate;
   double force_fit_error = 0.0, rate_fit_error = 0.0;  // fit_window_error of x_c and x_p
   std::size_t phase_end = 0;                           // last sample of the loading phase
+  std::optional<std::size_t> collapse_onset;           // where the curves were split (sharp_collapse_onset)
 };
 
 // The cubic fit's own error at a maximum: a cubic over a peak that is not one leaves its stationary
@@ -326,10 +332,12 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
     m.force.index += first;
   };
   fit_force();
-  const std::optional<std::size_t> onset =
-      m.force.found ? sharp_collapse_onset(force, m.force.index, search.collapse_fraction * m.force.value,
-                                           search.collapse_width)
-                    : std::nullopt;
+  std::optional<std::size_t> onset;
+  if (m.force.found && search.collapse_width > 0)
+    onset = sharp_collapse_onset(force, m.force.index, search.collapse_fraction * m.force.value,
+                                 search.collapse_width);
+  if (!onset) onset = search.collapse_onset;
+  m.collapse_onset = onset;
   if (onset) {
     filter_either_side(filter, force, *onset, m.filtered_force);
     filter_either_side(filter, energy, *onset, m.filtered_energy);
@@ -345,10 +353,12 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   // noise is several times the interior's: on a noisy curve they would win the maximum.
   const auto half = static_cast<std::size_t>(search.derivative_window / 2);
   const std::size_t inner_first = std::max(first, std::min(half, m.phase_end));
-  // Before a sharp collapse the derivative's window stops short of the onset: a cubic over the corner
-  // overshoots.
+  // Before a sharp collapse ℰ's search stops short of the onset by the derivative's half window (a
+  // cubic over the corner overshoots) and by the filter's edge (the loading's filtered end follows
+  // its padding, as past_the_filters_edge says of the start).
+  const std::size_t onset_margin = std::max(half, edge_samples(filter));
   const std::size_t loading_last =
-      onset ? std::min(m.phase_end, *onset - std::min(half, *onset)) : m.phase_end;
+      onset ? std::min(m.phase_end, *onset - std::min(onset_margin, *onset)) : m.phase_end;
   const std::size_t rate_end =
       std::max(inner_first, std::min(loading_last, xs.size() - 1 - std::min(half, xs.size() - 1)));
   const std::size_t edge = edge_samples(filter);
@@ -490,6 +500,7 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
   replicate_search.past_filter_edge = false;
   replicate_search.margin_low = core_low - run.low;
   replicate_search.margin_high = run.high - core_high;
+  replicate_search.collapse_onset.reset();
   const PeakMeasure measure = [&](std::span<const double> f, std::span<const double> e) {
     return peak_values(measure_peaks(window_x, f, e, replicate_search), have_energy_peak);
   };
@@ -586,7 +597,8 @@ std::optional<Grid> uniform_grid(const Curve& curve, const AnalysisOptions& opti
   if (g.curves.size() < needed) {
     throw InputError(
         curve.source,
-        fmt::format("{} distinct strains, the analysis needs at least {}", g.curves.size(), needed),
+        fmt::format("{} samples on the uniform grid ({} distinct strains), the analysis needs at least {}",
+                    g.curves.size(), r.resample.input_rows - r.resample.duplicates_merged, needed),
         "give a curve with more distinct strain values");
   }
   g.xs.resize(g.curves.size());
@@ -667,24 +679,32 @@ void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share
   r.energy_noise = noise_from_differences(g.energy());
 }
 
-// 2'. Where the record ends in a collapse the filter cannot follow (sharp_collapse_onset, found with the
-// whole record's choice), the noise is read and the filter chosen on the loading alone, the rows up
-// to the onset: on the whole record the discrepancy rule must follow the drop too and chooses a far
-// weaker filter (known-answer Weibull curves cut at 1.35 x_c: cutoff 0.13-0.17 against 0.028 uncut).
-void choose_filter_for_loading(const Grid& g, FilterSettings& filter, double smoothing_share,
-                               double collapse_fraction, AnalysisResult& r) {
-  if (!chooses_own_strength(filter)) return choose_filter(g, filter, smoothing_share, r);
+// 2'. A record that ends in a collapse the filter cannot follow (sharp_collapse_onset, sought with
+// the whole record's filter): the automatic choice reads the noise and chooses the filter on the
+// loading alone, the rows up to the onset. On the whole record the discrepancy rule must follow the
+// drop too and chooses a far weaker filter (known-answer Weibull curves cut at 1.35 x_c: cutoff
+// 0.13-0.17 against 0.028 uncut). Returns the onset, which every measurement then splits at.
+std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettings& filter,
+                                                     double smoothing_share, double collapse_fraction,
+                                                     AnalysisResult& r) {
+  const bool automatic = chooses_own_strength(filter);
   FilterSettings whole = filter;
-  AnalysisResult pilot;
-  choose_filter(g, whole, smoothing_share, pilot);
+  if (automatic) {
+    AnalysisResult pilot;
+    choose_filter(g, whole, smoothing_share, pilot);
+  }
   const ForceTop top = filtered_force_top(g.force(), whole);
   const auto onset = sharp_collapse_onset(g.force(), top.index, collapse_fraction * top.value,
                                           collapse_width(top.index, whole));
-  if (!onset || *onset + 1 < minimum_samples(whole)) return choose_filter(g, filter, smoothing_share, r);
+  if (!onset || *onset + 1 < minimum_samples(whole) || !automatic) {
+    choose_filter(g, filter, smoothing_share, r);
+    return onset;
+  }
   Grid loading = g;
   for (auto& y : loading.curves.y) y.resize(*onset + 1);
   loading.xs.resize(*onset + 1);
   choose_filter(loading, filter, smoothing_share, r);
+  return onset;
 }
 
 std::string rate_unit_of(const AnalysisResult& r) { return per_strain(r.energy_unit, r.strain_unit); }
@@ -699,6 +719,7 @@ void record_peaks(const PeakMeasurement& m, const Grid& g, AnalysisResult& r) {
   r.energy_peak = m.energy;
   r.rate_peak = m.rate;
   r.loading_phase_end = g.xs[m.phase_end];
+  if (m.collapse_onset) r.collapse_onset = g.xs[*m.collapse_onset];
   if (r.force_peak->found) {
     r.x_c = measured(r.force_peak->x, 0.0, r.strain_unit);
     r.F_c = measured(r.force_peak->value, 0.0, r.force_unit);
@@ -943,8 +964,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
-  choose_filter_for_loading(g, options.filter, options.random_walk_smoothing_share,
-                            options.acceptance.collapse_fraction, r);  // 2
+  const auto onset = choose_filter_for_loading(g, options.filter, options.random_walk_smoothing_share,
+                                               options.acceptance.collapse_fraction, r);  // 2
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
   const PeakSearch search{
       .filter = r.filter,
@@ -952,6 +973,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       .peak = options.peak,
       .collapse_fraction = options.acceptance.collapse_fraction,
       .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index, r.filter),
+      .collapse_onset = onset,
       .past_filter_edge = true};
   r.derivative_window = search.derivative_window;
   const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
@@ -1273,6 +1295,8 @@ nlohmann::json to_json(const AnalysisResult& r) {
     j["delta_x"]["interval_scales"]["white_share"] = *level;
   j["delta_x_direct"] = optional_json(r.delta_x_direct);
   j["loading_phase_end"] = io::quantity(r.loading_phase_end, r.strain_unit);
+  j["collapse_onset"] =
+      r.collapse_onset ? io::quantity(*r.collapse_onset, r.strain_unit) : nlohmann::json(nullptr);
   j["uncertainty"] = uncertainty_json(r);
   j["Gamma"] = optional_json(r.Gamma);
   j["A_r"] = optional_json(r.A_r);

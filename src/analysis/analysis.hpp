@@ -259,6 +259,9 @@ struct AnalysisResult {
   std::optional<Measured> x_c, F_c, x_m, E_max, x_p, Erate_max;
   std::optional<StrainInterval> x_c_interval, x_p_interval;  // where the bootstrap gave their sd
   double loading_phase_end = 0.0;  // strain where the loading phase ends (AcceptanceRules::collapse_fraction)
+  // Strain where a collapse too sharp for the filter begins; the loading and the collapse are then
+  // filtered apart (docs/analysis.md, "A collapse the filter cannot follow").
+  std::optional<double> collapse_onset;
   DelayMethod delay_method = DelayMethod::fitted_maxima;
   // fitted_maxima: the replicates' sampling distribution centred on the estimate; shift_l1: the posterior.
   std::optional<DelayPosterior> delay;

@@ -35,10 +35,14 @@ std::optional<Lattice> lattice_of(std::span<const double> xs) {
   if (step <= 0.0 || 2 * count < spacing.size()) return std::nullopt;
   const double anchor =
       xs[static_cast<std::size_t>(std::find_if(spacing.begin(), spacing.end(), even) - spacing.begin())];
-  const double first = std::ceil((xs.front() - anchor) / step - 1e-9);
-  const double last = std::floor((xs.back() - anchor) / step + 1e-9);
-  if (last - first < 1.0) return std::nullopt;
-  return Lattice{anchor + first * step, step, static_cast<std::size_t>(last - first) + 1};
+  const double first = std::ceil((xs.front() - anchor) / step - 1e-6);
+  const double last = std::floor((xs.back() - anchor) / step + 1e-6);
+  const double points = last - first + 1.0;
+  // A lattice far denser or sparser than the rows (a curve of close pairs, say, whose small gap is
+  // the median) is no grid for them.
+  const auto rows = static_cast<double>(xs.size());
+  if (points < std::max(2.0, 0.5 * rows) || points > 2.0 * rows) return std::nullopt;
+  return Lattice{anchor + first * step, step, static_cast<std::size_t>(points)};
 }
 
 }  // namespace

@@ -814,6 +814,26 @@ TEST(AnalyzeCurve, ARunsUnevenRowsAreAnalysedOnTheirOwnLattice) {
   const auto r = analyze_curve(c, {});
   EXPECT_TRUE(r.resample.on_lattice);
   EXPECT_NEAR(r.force_noise, 0.005 * F_c, 0.1 * 0.005 * F_c);
+  EXPECT_FALSE(r.collapse_onset);  // the law's own gradual decline is no collapse
+}
+
+// Rows in close pairs (a logger writing twice per tick): the small gap is the median spacing, and its
+// lattice would hold a million points for 2,000 rows; the grid of as many points as rows serves instead.
+TEST(AnalyzeCurve, RowsInClosePairsAreNotPutOnTheLatticeOfTheirSmallGap) {
+  std::vector<double> strain, force;
+  for (int k = 0; k < 1000; ++k) {
+    for (const double x : {k * 1e-3, k * 1e-3 + 1e-9}) {
+      strain.push_back(x);
+      force.push_back(weibull3_force(x));
+    }
+  }
+  const std::span<const double> columns[] = {force};
+  ResampleReport report;
+  const UniformCurves grid = resample_uniform(strain, columns, report);
+  EXPECT_TRUE(report.resampled);
+  EXPECT_FALSE(report.on_lattice);
+  EXPECT_EQ(grid.size(), 2000u);
+  EXPECT_NEAR(grid.step, strain.back() / 1999.0, 1e-15);
 }
 
 // The curve falls by e every 3 rows at 1.2 x_c (a brittle sample breaking apart), F with 2 % white
@@ -838,6 +858,9 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     add_noise(c, 0.02 * weibull3_force(x_c), 0.002 * weibull3_energy(cut), seed);
     const auto r = analyze_curve(c, {});
     ASSERT_TRUE(r.accepted) << seed << ": " << r.rejection;
+    ASSERT_TRUE(r.collapse_onset) << seed;
+    EXPECT_NEAR(*r.collapse_onset, cut, 3 * step) << seed;
+    EXPECT_EQ(to_json(r)["collapse_onset"]["unit"], "1");
     EXPECT_NEAR(r.x_p->value, x_p, 0.05 * x_p) << seed;
     EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;  // rms 1.7 % over 20 seeds (flat top, 2 % noise)
     EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.15 * (x_c - x_p)) << seed;

@@ -1,4 +1,4 @@
-# rupture 0.1.0 (f5613d0-dirty) plot small-absolute
+# rupture 0.1.0 (3ed7342-dirty) plot small-absolute
 # read: small-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -38,8 +38,8 @@ do for [format in formats] {
   set title "Delay of failure behind the precursor (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.026943127724019328:61.369638043921896]
-  set yrange [0.0008981042574673111:61.369638043921896]
+  set xrange [0.026944095772785105:61.369638043921896]
+  set yrange [0.0008981365257595035:61.369638043921896]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

@@ -1,4 +1,4 @@
-# rupture 0.1.0 (f5613d0-dirty) plot small-relative
+# rupture 0.1.0 (3ed7342-dirty) plot small-relative
 # read: small-relative/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -35,7 +35,7 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "delay_vs_critical.pdf"
   }
-  set title "Delay of failure behind the precursor (36 analysed points)"
+  set title "Delay of failure behind the precursor (35 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
   set xrange [0.023857544022077976:111.28221219716158]

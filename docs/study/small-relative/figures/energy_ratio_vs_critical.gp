@@ -1,4 +1,4 @@
-# rupture 0.1.0 (f5613d0-dirty) plot small-relative
+# rupture 0.1.0 (3ed7342-dirty) plot small-relative
 # read: small-relative/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
@@ -35,7 +35,7 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "energy_ratio_vs_critical.pdf"
   }
-  set title "Energy ratio A_r against critical strain (36 analysed points)"
+  set title "Energy ratio A_r against critical strain (35 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
   set xrange [0.023857544022077976:111.28221219716158]

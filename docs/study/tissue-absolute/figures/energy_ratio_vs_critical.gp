@@ -1,4 +1,4 @@
-# rupture 0.1.0 (f5613d0-dirty) plot tissue-absolute
+# rupture 0.1.0 (3ed7342-dirty) plot tissue-absolute
 # read: tissue-absolute/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
