@@ -680,29 +680,25 @@ void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share
 }
 
 // 2'. A record that ends in a collapse the filter cannot follow (sharp_collapse_onset, sought with
-// the whole record's filter): the automatic choice reads the noise and chooses the filter on the
-// loading alone, the rows up to the onset. On the whole record the discrepancy rule must follow the
-// drop too and chooses a far weaker filter (known-answer Weibull curves cut at 1.35 x_c: cutoff
+// the whole record's filter): the automatic choice reads the noise and chooses the filter again on
+// the loading alone, the rows up to the onset. On the whole record the discrepancy rule must follow
+// the drop too and chooses a far weaker filter (known-answer Weibull curves cut at 1.35 x_c: cutoff
 // 0.13-0.17 against 0.028 uncut). Returns the onset, which every measurement then splits at.
 std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettings& filter,
                                                      double smoothing_share, double collapse_fraction,
                                                      AnalysisResult& r) {
-  const bool automatic = chooses_own_strength(filter);
-  FilterSettings whole = filter;
-  if (automatic) {
-    AnalysisResult pilot;
-    choose_filter(g, whole, smoothing_share, pilot);
-  }
-  const ForceTop top = filtered_force_top(g.force(), whole);
+  const FilterSettings requested = filter;
+  const std::size_t warnings = r.warnings.size();
+  choose_filter(g, filter, smoothing_share, r);
+  const ForceTop top = filtered_force_top(g.force(), filter);
   const auto onset = sharp_collapse_onset(g.force(), top.index, collapse_fraction * top.value,
-                                          collapse_width(top.index, whole));
-  if (!onset || *onset + 1 < minimum_samples(whole) || !automatic) {
-    choose_filter(g, filter, smoothing_share, r);
-    return onset;
-  }
+                                          collapse_width(top.index, filter));
+  if (!onset || *onset + 1 < minimum_samples(filter) || !chooses_own_strength(requested)) return onset;
   Grid loading = g;
   for (auto& y : loading.curves.y) y.resize(*onset + 1);
   loading.xs.resize(*onset + 1);
+  r.warnings.resize(warnings);  // the whole record's reading is replaced, warnings included
+  filter = requested;
   choose_filter(loading, filter, smoothing_share, r);
   return onset;
 }
@@ -851,6 +847,25 @@ StrainInterval strain_interval(const Measured& m, const IntervalScales& scales) 
           .scales = scales};
 }
 
+// A curve split at a sharp collapse lies outside every curve the interval factors were learned and
+// checked on: its intervals of x_c, x_p and δ_x say they are not calibrated, and a warning says why.
+void mark_collapse_uncalibrated(AnalysisResult& r) {
+  bool was_calibrated = r.interval_scales.calibrated;
+  for (auto* interval : {&r.x_c_interval, &r.x_p_interval}) {
+    if (!*interval) continue;
+    was_calibrated = was_calibrated || (*interval)->scales.calibrated;
+    (*interval)->scales.calibrated = false;
+  }
+  r.interval_scales.calibrated = false;
+  if (!was_calibrated) return;
+  r.warnings.push_back(fmt::format(
+      "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered apart from the "
+      "loading; no curve of the calibration had one, so the intervals of x_c, x_p and delta_x are not "
+      "calibrated (the 68 % interval of delta_x covered 10-100 % on brittle curves with known answers; "
+      "docs/analysis.md, \"A collapse the filter cannot follow\")",
+      *r.collapse_onset, r.strain_unit));
+}
+
 // 7. δ_x by the chosen method, then Γ and α, and the acceptance of the uncertainty.
 void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInterval& direct,
                     const AnalysisOptions& options, AnalysisResult& r) {
@@ -890,6 +905,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
              "peaks is too short)");
     }
   }
+  if (r.collapse_onset) mark_collapse_uncalibrated(r);
   r.delay = delay;
   r.delta_x = measured(delay.mean, delay.sd, r.strain_unit);
   if (delay.mean != 0.0 && r.energy_peak->found) {

@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -59,11 +61,14 @@ void print_input(const analysis::AnalysisResult& r, std::FILE* out) {
   fmt::print(out, "\n");
 }
 
-// Under an uncalibrated white interval: the noise level it stands at and the range its factors were
-// checked on.
+// Under an interval whose white noise lies outside the range its factors were checked on
+// [checked_from, checked_to]: that level and the range (another reason is a warning of its own).
 void print_level_note(std::FILE* out, const char* name, const char* noise, std::optional<double> level,
-                      bool calibrated, const std::string& checked) {
-  if (calibrated || !level) return;
+                      double checked_from, double checked_to) {
+  if (!level || (*level >= checked_from && *level <= checked_to)) return;
+  const std::string checked = std::isfinite(checked_to)
+                                  ? fmt::format("{:g}-{:g} %", 100.0 * checked_from, 100.0 * checked_to)
+                                  : fmt::format("{:g} % and above", 100.0 * checked_from);
   fmt::print(out, "              ({} {:.3g} %; {}'s factors are calibrated for {})\n", noise, 100.0 * *level,
              name, checked);
 }
@@ -79,19 +84,17 @@ void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
     fmt::print(out, "  {:<11} {} (95 % [{:.6g}, {:.6g}]{})\n", name, with_error(*m), interval->ci95_low,
                interval->ci95_high, analysis::calibration_mark(interval->scales.calibrated));
   };
-  const std::string from_level =
-      fmt::format("{:g} % and above", 100.0 * analysis::white_factors_checked_from);
+  const double from = analysis::white_factors_checked_from, above = std::numeric_limits<double>::infinity();
   strain_line("x_c", r.x_c, r.x_c_interval);
   if (r.x_c_interval)
-    print_level_note(out, "x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r),
-                     r.x_c_interval->scales.calibrated, from_level);
+    print_level_note(out, "x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r), from,
+                     above);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
   if (r.x_p_interval)
     print_level_note(out, "x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
-                     r.x_p_interval->scales.calibrated,
-                     fmt::format("{:g}-{:g} %", 100.0 * analysis::precursor_white_levels.calibrated_from,
-                                 100.0 * analysis::precursor_white_levels.calibrated_to));
+                     analysis::precursor_white_levels.calibrated_from,
+                     analysis::precursor_white_levels.calibrated_to);
   line("Erate_max", r.Erate_max);
   line("x_m", r.x_m);
   line("E_max", r.E_max);
@@ -102,7 +105,7 @@ void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
                d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales.calibrated));
     if (r.delay_method == analysis::DelayMethod::fitted_maxima)
       print_level_note(out, "delta_x", "the larger white noise of F and E_e, share of its peak:",
-                       analysis::delay_noise_level(r), r.interval_scales.calibrated, from_level);
+                       analysis::delay_noise_level(r), from, above);
   }
   line("Gamma", r.Gamma);
   line("A_r", r.A_r);

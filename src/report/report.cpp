@@ -228,16 +228,27 @@ bool interval_calibrated(const json& delta) {
 }
 
 // Nothing where δ_x's intervals are calibrated; else that they are not, and why where the reason is
-// the curve's white noise below the level from which the white factors were checked.
-std::string uncalibrated_because(const json& delta) {
+// the curve's white noise below the level from which the white factors were checked, or a sharp
+// collapse filtered apart from the loading.
+std::string uncalibrated_because(const json& analysis) {
+  const auto& delta = analysis["delta_x"];
   if (interval_calibrated(delta)) return "";
   const auto& scales = delta.value("interval_scales", json::object());
   const double level = scales.value("white_share", std::numeric_limits<double>::quiet_NaN());
-  if (!(level < analysis::white_factors_checked_from)) return "; its intervals are not calibrated";
-  return fmt::format(
-      "; its intervals are not calibrated: the curve's white noise, {} % of its peak, lies below the {:g} % "
-      "from which the white factors were checked (docs/analysis.md)",
-      number_text(100.0 * level), 100.0 * analysis::white_factors_checked_from);
+  if (level < analysis::white_factors_checked_from) {
+    return fmt::format(
+        "; its intervals are not calibrated: the curve's white noise, {} % of its peak, lies below the {:g} "
+        "% "
+        "from which the white factors were checked (docs/analysis.md)",
+        number_text(100.0 * level), 100.0 * analysis::white_factors_checked_from);
+  }
+  if (const auto onset = analysis.find("collapse_onset"); onset != analysis.end() && onset->is_object()) {
+    return fmt::format(
+        "; its intervals are not calibrated: the curve ends in a collapse too sharp for the filter (from "
+        "{} {}), filtered apart from the loading, and no curve of the calibration had one (docs/analysis.md)",
+        number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")));
+  }
+  return "; its intervals are not calibrated";
 }
 
 std::string run_summary(const json& analysis) {
@@ -307,7 +318,7 @@ std::string analysis_section(const json& analysis) {
     html +=
         "<p>Distribution of δ<sub>x</sub> (bootstrap replicates, or the posterior of the shift-l1 "
         "method)" +
-        uncalibrated_because(delta) + ":</p>\n";
+        uncalibrated_because(analysis) + ":</p>\n";
     html += table({"mode / estimate", "mean", "median", "sd", "68 % interval", "95 % interval", "unit"},
                   {{number_text(delta["map"].get<double>()), number_text(delta["mean"].get<double>()),
                     number_text(delta["median"].get<double>()), number_text(delta["sd"].get<double>()),

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -861,6 +862,13 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     ASSERT_TRUE(r.collapse_onset) << seed;
     EXPECT_NEAR(*r.collapse_onset, cut, 3 * step) << seed;
     EXPECT_EQ(to_json(r)["collapse_onset"]["unit"], "1");
+    // No curve of the calibration had a collapse: the intervals say so, and a warning says why.
+    EXPECT_FALSE(r.interval_scales.calibrated) << seed;
+    EXPECT_FALSE(r.x_c_interval->scales.calibrated) << seed;
+    EXPECT_FALSE(r.x_p_interval->scales.calibrated) << seed;
+    EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+      return w.find("collapse too sharp for the filter") != std::string::npos;
+    })) << seed;
     EXPECT_NEAR(r.x_p->value, x_p, 0.05 * x_p) << seed;
     EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;  // rms 1.7 % over 20 seeds (flat top, 2 % noise)
     EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.15 * (x_c - x_p)) << seed;
