@@ -279,20 +279,20 @@ std::size_t collapse_width(std::size_t force_top, const FilterSettings& filter) 
   return std::min(2 * edge_samples(filter), force_top / 20);
 }
 
-// The loading and the collapse filtered each on its own, split at the onset (each piece's end padding
-// continues it), so that the drop's response does not reach back into the loading. A piece too short
-// for the filter stays raw; a loading too short leaves the whole record's filtering.
+// The loading and the collapse filtered each on its own, split at the onset, so that the drop's
+// response does not reach back into the loading. The loading's cut end is continued by its trend
+// (filter_continuing_end), the collapse's ends padded as usual. A piece too short for the filter
+// stays raw; a loading too short leaves the whole record's filtering.
 void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
                         std::vector<double>& filtered) {
   const std::size_t need = minimum_samples(filter);
   if (onset + 1 < need) return;
-  const auto place = [&](std::span<const double> piece, std::size_t at) {
-    const auto smooth =
-        piece.size() < need ? std::vector<double>(piece.begin(), piece.end()) : apply_filter(filter, piece);
-    std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(at));
-  };
-  place(raw.first(onset + 1), 0);
-  place(raw.subspan(onset + 1), onset + 1);
+  const auto loading = filter_continuing_end(filter, raw.first(onset + 1));
+  std::copy(loading.begin(), loading.end(), filtered.begin());
+  const auto collapse = raw.subspan(onset + 1);
+  const auto smooth = collapse.size() < need ? std::vector<double>(collapse.begin(), collapse.end())
+                                             : apply_filter(filter, collapse);
+  std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(onset + 1));
 }
 
 // ℰ of a loading from rest rises from 0. Where it falls from the start of the search instead, and

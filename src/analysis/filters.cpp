@@ -266,6 +266,31 @@ std::vector<double> apply_filter(FilterSettings& settings, std::span<const doubl
   return filter_with(settings, y);
 }
 
+std::vector<double> filter_continuing_end(const FilterSettings& settings, std::span<const double> y) {
+  assert(!chooses_own_strength(settings));
+  FilterSettings chosen = settings;
+  const std::size_t edge = edge_samples(settings), n = y.size();
+  if (edge < 3 || n < 2 * edge) return apply_filter(chosen, y);
+  // The line a + slope * t through the last `edge` samples, t counted in samples from the last one.
+  const double count = static_cast<double>(edge), mean_t = -(count - 1.0) / 2.0;
+  double mean_y = 0.0;
+  for (std::size_t i = 0; i < edge; ++i) mean_y += y[n - 1 - i];
+  mean_y /= count;
+  double stt = 0.0, sty = 0.0;
+  for (std::size_t i = 0; i < edge; ++i) {
+    const double dt = -static_cast<double>(i) - mean_t;
+    stt += dt * dt;
+    sty += dt * (y[n - 1 - i] - mean_y);
+  }
+  const double slope = sty / stt, end_value = mean_y - slope * mean_t;
+  std::vector<double> continued(y.begin(), y.end());
+  continued.reserve(n + 2 * edge);
+  for (std::size_t i = 1; i <= 2 * edge; ++i) continued.push_back(end_value + slope * static_cast<double>(i));
+  auto filtered = apply_filter(chosen, continued);
+  filtered.resize(n);
+  return filtered;
+}
+
 bool chooses_own_strength(const FilterSettings& settings) {
   return (settings.kind == FilterKind::butterworth && settings.cutoff <= 0.0) ||
          (settings.kind == FilterKind::savitzky_golay && settings.savgol_window <= 0);

@@ -86,6 +86,16 @@ void choose_shared_filter(FilterSettings& settings, std::span<const std::span<co
 // Whether the settings leave the strength to the automatic choice (no cutoff or window given).
 bool chooses_own_strength(const FilterSettings& settings);
 
+// The filter of a piece cut short at its end (the loading before a sharp collapse, analysis.cpp): the
+// piece is continued past its last sample by the least-squares line through its last edge_samples()
+// samples, for twice that many samples, and filtered with that continuation. The plain padding, an
+// odd extension about the last sample, pins the filtered end to that one noisy sample and flips the
+// curve's bend beyond it; at a cut a few percent past the force peak that edge reaches x_c and x_p
+// (docs/analysis.md, "The loading's cut end"). Where the filter has an edge of fewer than 3 samples
+// or the piece is shorter than twice its edge, the plain filter. The settings' strength must be
+// chosen (not automatic).
+std::vector<double> filter_continuing_end(const FilterSettings& settings, std::span<const double> y);
+
 // Caps the smoothing so that the filter averages over no more than `longest_period` samples (a
 // Butterworth cutoff of at least 2/longest_period Nyquist units, at most 0.95; a Savitzky–Golay
 // window of at most longest_period samples). Used after an automatic choice, whose own floor is a

@@ -837,27 +837,34 @@ TEST(AnalyzeCurve, RowsInClosePairsAreNotPutOnTheLatticeOfTheirSmallGap) {
   EXPECT_NEAR(grid.step, strain.back() / 1999.0, 1e-15);
 }
 
-// The curve falls by e every 3 rows at 1.2 x_c (a brittle sample breaking apart), F with 2 % white
-// noise and E_e with 0.2 %, as on rupture's own runs. One filter over the whole record spreads the
-// drop back with an overshoot and put x_p at the collapse (0.80-0.83 where it is 0.49) and δ_x near
-// 0; filtered on either side of the onset, the loading keeps its maxima.
+// A Weibull k = 3 curve that falls by e every 3 rows from `cut` on (a brittle sample breaking apart), F
+// with 2 % white noise and E_e with 0.2 %, as on rupture's own runs.
+Curve brittle_curve(double cut, std::size_t rows, std::uint64_t seed) {
+  const double x_c = std::cbrt(1.0 / 3.0);
+  Curve c;
+  c.source = "collapse";
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  const double step = 1.5 * x_c / static_cast<double>(rows - 1);
+  for (std::size_t i = 0; i < rows; ++i) {
+    const double x = step * static_cast<double>(i);
+    const double fall = x > cut ? std::exp(-(x - cut) / (3 * step)) : 1.0;
+    c.strain.push_back(x);
+    c.force.push_back(weibull3_force(std::min(x, cut)) * fall);
+    c.energy.push_back(weibull3_energy(std::min(x, cut)) * fall);
+  }
+  add_noise(c, 0.02 * weibull3_force(x_c), 0.002 * weibull3_energy(cut), seed);
+  return c;
+}
+
+// One filter over the whole record spreads the drop back with an overshoot and put x_p at the
+// collapse (0.80-0.83 where it is 0.49) and δ_x near 0; filtered on either side of the onset, the
+// loading keeps its maxima.
 TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
   const double x_c = std::cbrt(1.0 / 3.0), x_p = weibull3_x_p(), cut = 1.2 * x_c;
   const std::size_t rows = 500;
+  const double step = 1.5 * x_c / (rows - 1);
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    Curve c;
-    c.source = "collapse";
-    c.strain_unit = c.force_unit = c.energy_unit = "1";
-    const double step = 1.5 * x_c / (rows - 1);
-    for (std::size_t i = 0; i < rows; ++i) {
-      const double x = step * static_cast<double>(i);
-      const double fall = x > cut ? std::exp(-(x - cut) / (3 * step)) : 1.0;
-      c.strain.push_back(x);
-      c.force.push_back(weibull3_force(std::min(x, cut)) * fall);
-      c.energy.push_back(weibull3_energy(std::min(x, cut)) * fall);
-    }
-    add_noise(c, 0.02 * weibull3_force(x_c), 0.002 * weibull3_energy(cut), seed);
-    const auto r = analyze_curve(c, {});
+    const auto r = analyze_curve(brittle_curve(cut, rows, seed), {});
     ASSERT_TRUE(r.accepted) << seed << ": " << r.rejection;
     ASSERT_TRUE(r.collapse_onset) << seed;
     EXPECT_NEAR(*r.collapse_onset, cut, 3 * step) << seed;
@@ -870,8 +877,26 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
       return w.find("collapse too sharp for the filter") != std::string::npos;
     })) << seed;
     EXPECT_NEAR(r.x_p->value, x_p, 0.05 * x_p) << seed;
-    EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;  // rms 1.7 % over 20 seeds (flat top, 2 % noise)
-    EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.15 * (x_c - x_p)) << seed;
+    EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;  // rms 1.8 % over 20 seeds (flat top, 2 % noise)
+    EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.2 * (x_c - x_p)) << seed;
+    EXPECT_LT(r.delay->ci95_low, x_c - x_p) << seed;
+    EXPECT_GT(r.delay->ci95_high, x_c - x_p) << seed;
+  }
+}
+
+// Cut 5 % past the force peak (the default study's run breaks 7 % past it), the loading's filtered end
+// reaches both maxima. The plain padding pinned it to the last noisy sample before the drop and flipped
+// the curve's bend there: x_p 0.55 on average over 20 seeds where it is 0.49, δ_x 26 % short. Continued
+// by its trend (filter_continuing_end), x_p's rms error is 4.5 % over those seeds.
+TEST(AnalyzeCurve, TheLoadingsCutEndLeavesThePrecursorWhereItIs) {
+  const double x_c = std::cbrt(1.0 / 3.0), x_p = weibull3_x_p();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const auto r = analyze_curve(brittle_curve(1.05 * x_c, 500, seed), {});
+    ASSERT_TRUE(r.accepted) << seed << ": " << r.rejection;
+    ASSERT_TRUE(r.collapse_onset) << seed;
+    EXPECT_NEAR(r.x_p->value, x_p, 0.07 * x_p) << seed;
+    EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;
+    EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.3 * (x_c - x_p)) << seed;
     EXPECT_LT(r.delay->ci95_low, x_c - x_p) << seed;
     EXPECT_GT(r.delay->ci95_high, x_c - x_p) << seed;
   }
