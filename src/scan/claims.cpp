@@ -18,15 +18,19 @@ constexpr double far_gamma = 5.0;  // Γ above this: the energy maximum far behi
 constexpr double large_energy_ratio = 2.0;  // A_r above this: the paper's events with A_r ≈ 3
 constexpr double small_x_c = 10.0;          // %: the paper compares A_r with the FBM band below this x_c
 
-// "median (10–90 %: a–b; all lo–hi)" of the finite values, "–" when there are none.
+// "median (10–90 %: a–b; all lo–hi)" of the finite values, "–" when there are none. Quantiles
+// interpolate linearly between the sorted values (NumPy's default), so the median of an even count is
+// the mean of the middle two.
 std::string spread(std::vector<double> values) {
   values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
                values.end());
   if (values.empty()) return "–";
   std::sort(values.begin(), values.end());
   const auto quantile = [&](double p) {
-    const auto k = static_cast<std::size_t>(p * double(values.size() - 1) + 0.5);
-    return values[std::min(k, values.size() - 1)];
+    const double at = p * double(values.size() - 1);
+    const auto below = static_cast<std::size_t>(at);
+    const std::size_t above = std::min(below + 1, values.size() - 1);
+    return values[below] + (at - double(below)) * (values[above] - values[below]);
   };
   return fmt::format("{:.3g} (10–90 %: {:.3g}–{:.3g}; all {:.3g}–{:.3g})", quantile(0.5), quantile(0.1),
                      quantile(0.9), values.front(), values.back());

@@ -357,11 +357,13 @@ TEST(ScanClaims, CountAndSummariseTheAcceptedPointsOfAKnownTable) {
   EXPECT_EQ(here(1),
             "δ_x ∝ x_c^0.927 over x_c = 0.02–5 % (log–log fit, δ_x > 0); x_c^0.927 over the 5 whose 68 % "
             "interval excludes 0");
-  // δ_x/x_c sorted: -0.05, 0.18, 0.24, 0.25, 0.267, 0.3.
-  EXPECT_EQ(here(2), "median 0.25 (10–90 %: 0.18–0.3; all -0.05–0.3)");
+  // δ_x/x_c sorted: -0.05, 0.18, 0.24, 0.25, 0.267, 0.3; quantiles interpolated linearly: the median
+  // (0.24 + 0.25)/2, the 10 % one half way from -0.05 to 0.18, the 90 % one half way from 0.267 to 0.3.
+  EXPECT_EQ(here(2), "median 0.245 (10–90 %: 0.065–0.283; all -0.05–0.3)");
   EXPECT_EQ(here(3), "median –");  // the fixture has no α column values
   EXPECT_EQ(claims.rows[4].paper, "A_r in the FBM band 0.84–1.33 for x_c < 10 %");
-  EXPECT_EQ(here(4), "4 of 6; A_r median 1.1 (10–90 %: 0.8–1.3; all 0.7–1.3)");
+  // A_r sorted: 0.7, 0.8, 0.95, 1.1, 1.25, 1.3 (1.025 and 1.275 print below their decimal ties).
+  EXPECT_EQ(here(4), "4 of 6; A_r median 1.02 (10–90 %: 0.75–1.27; all 0.7–1.3)");
   EXPECT_EQ(here(5), fmt::format("Γ > 5: {}; A_r > 2: 0", F::gamma_above_5));
   EXPECT_EQ(here(6), "brittle at b_d = 0.001 mm");
   EXPECT_EQ(here(7), "brittle: 2, hyper-elastic: 1, semi-ductile: 3; rejected as ductile-like: 1");
