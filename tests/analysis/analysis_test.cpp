@@ -878,6 +878,9 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     })) << seed;
     EXPECT_NEAR(r.x_p->value, x_p, 0.05 * x_p) << seed;
     EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;  // rms 1.8 % over 20 seeds (flat top, 2 % noise)
+    // 0.15 until the loading's cut end was continued by its trend line (filter_continuing_end): that
+    // extends F's top as a plateau and moves x_c towards the cut, δ_x's rms error on this line 8.0 ->
+    // 10.9 % over 20 seeds (and 30.6 -> 19.4 % at 1.05 x_c); seed 2 here is now 17 % off.
     EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.2 * (x_c - x_p)) << seed;
     EXPECT_LT(r.delay->ci95_low, x_c - x_p) << seed;
     EXPECT_GT(r.delay->ci95_high, x_c - x_p) << seed;

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (3ed7342-dirty) plot small-absolute
-# read: small-absolute/results.csv
+# rupture 0.1.0 (4c3934c) plot /tmp/rean3/small-absolute
+# read: /tmp/rean3/small-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -38,8 +38,8 @@ do for [format in formats] {
   set title "Delay of failure behind the precursor (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.026944095772785105:61.369638043921896]
-  set yrange [0.0008981365257595035:61.369638043921896]
+  set xrange [0.026948339414164524:61.36993850127925]
+  set yrange [0.0008982779804721508:61.36993850127925]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (3ed7342-dirty) plot small-absolute
-# read: small-absolute/results.csv
+# rupture 0.1.0 (4c3934c) plot /tmp/rean3/small-absolute
+# read: /tmp/rean3/small-absolute/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -38,7 +38,7 @@ do for [format in formats] {
   set title "Energy ratio A_r against critical strain (36 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.026433408999993985:61.369638043921896]
+  set xrange [0.026432982478712227:61.36993850127925]
   set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics autofreq

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (3ed7342-dirty) plot small-relative
-# read: small-relative/results.csv
+# rupture 0.1.0 (4c3934c) plot /tmp/rean3/small-relative
+# read: /tmp/rean3/small-relative/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,11 +35,11 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "delay_vs_critical.pdf"
   }
-  set title "Delay of failure behind the precursor (35 analysed points)"
+  set title "Delay of failure behind the precursor (38 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.023857544022077976:111.28221219716158]
-  set yrange [0.0007952514674025992:111.28221219716158]
+  set xrange [0.02402360871969079:111.4209219872152]
+  set yrange [0.0008007869573230265:111.4209219872152]
   set logscale x 10
   set xtics autofreq
   set format x "10^{%L}"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (3ed7342-dirty) plot small-relative
-# read: small-relative/results.csv
+# rupture 0.1.0 (4c3934c) plot /tmp/rean3/small-relative
+# read: /tmp/rean3/small-relative/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -35,10 +35,10 @@ do for [format in formats] {
     set terminal pdfcairo size width / 72.0, height / 72.0 enhanced font font_spec
     set output "energy_ratio_vs_critical.pdf"
   }
-  set title "Energy ratio A_r against critical strain (35 analysed points)"
+  set title "Energy ratio A_r against critical strain (38 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.023857544022077976:111.28221219716158]
+  set xrange [0.02402360871969079:111.4209219872152]
   set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics autofreq
