@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "analysis/bootstrap.hpp"
+#include "analysis/collapse.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
 #include "io/quantity.hpp"
@@ -57,10 +58,6 @@ std::string unit_of(const io::CsvTable& table, std::size_t c, const std::string&
                   "give {} if it has one",
                   table.source, table.header[c], table.header[c], option));
   return "1";
-}
-
-std::string per_strain(const std::string& unit, const std::string& strain_unit) {
-  return io::unit_ratio(unit, strain_unit);
 }
 
 // Height of the global maximum above the higher of the lowest points on either side.
@@ -239,27 +236,6 @@ std::size_t loading_phase_end(std::span<const double> filtered_force, std::size_
   return filtered_force.size() - 1;
 }
 
-// A collapse sharper than the filter can follow: after the force peak the raw force falls from
-// above twice `collapse_level` to below it within `width` samples (collapse_width). A low-pass spreads
-// such a drop backwards with an overshoot: ℰ, the derivative, then peaks on the filter's response
-// just before the collapse, above any slope the rows hold, and F's peak is lifted there too
-// (known-answer Weibull curves cut at 1.05-1.35 x_c: x_p found at the cut where it is 0.49;
-// docs/analysis.md, "A collapse the filter cannot follow"). The onset is where the drop begins: from
-// the last sample above twice the level, back while the raw force still falls. Nothing where the
-// collapse is gradual or absent.
-std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::size_t force_top,
-                                                double collapse_level, std::size_t width) {
-  std::size_t fallen = force_top + 1;
-  while (fallen < force.size() && force[fallen] >= collapse_level) ++fallen;
-  if (fallen >= force.size() || width == 0) return std::nullopt;
-  const std::size_t start = fallen > width ? fallen - width : 0;
-  if (force[start] < 2.0 * collapse_level) return std::nullopt;
-  std::size_t onset = fallen - 1;
-  while (force[onset] < 2.0 * collapse_level) --onset;
-  while (onset > start && force[onset - 1] > force[onset]) --onset;
-  return onset;
-}
-
 // The filtered force's largest sample under `filter`: where and how high.
 struct ForceTop {
   std::size_t index = 0;
@@ -269,30 +245,6 @@ ForceTop filtered_force_top(std::span<const double> force, FilterSettings filter
   const auto filtered = apply_filter(filter, force);
   const auto top = std::max_element(filtered.begin(), filtered.end());
   return {static_cast<std::size_t>(top - filtered.begin()), *top};
-}
-
-// The widest drop (samples) taken for a collapse: one period of the filter's cutoff (a slower one
-// the filter follows) and a twentieth of the rise to the force peak (a slower one is the curve's own
-// decline: a finite bundle recorded far past its peak falls gradually, and its strong filter's
-// period can span that fall).
-std::size_t collapse_width(std::size_t force_top, const FilterSettings& filter) {
-  return std::min(2 * edge_samples(filter), force_top / 20);
-}
-
-// The loading and the collapse filtered each on its own, split at the onset, so that the drop's
-// response does not reach back into the loading. The loading's cut end is continued by its trend
-// (filter_continuing_end), the collapse's ends padded as usual. A piece too short for the filter
-// stays raw; a loading too short leaves the whole record's filtering.
-void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
-                        std::vector<double>& filtered) {
-  const std::size_t need = minimum_samples(filter);
-  if (onset + 1 < need) return;
-  const auto loading = filter_continuing_end(filter, raw.first(onset + 1));
-  std::copy(loading.begin(), loading.end(), filtered.begin());
-  const auto collapse = raw.subspan(onset + 1);
-  const auto smooth = collapse.size() < need ? std::vector<double>(collapse.begin(), collapse.end())
-                                             : apply_filter(filter, collapse);
-  std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(onset + 1));
 }
 
 // ℰ of a loading from rest rises from 0. Where it falls from the start of the search instead, and
@@ -703,8 +655,6 @@ std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettin
   return onset;
 }
 
-std::string rate_unit_of(const AnalysisResult& r) { return per_strain(r.energy_unit, r.strain_unit); }
-
 // 4. The maxima found inside the loading phase, as values without errors: the bootstrap (step 6)
 // supplies the errors where all three peaks are found.
 void record_peaks(const PeakMeasurement& m, const Grid& g, AnalysisResult& r) {
@@ -726,7 +676,7 @@ void record_peaks(const PeakMeasurement& m, const Grid& g, AnalysisResult& r) {
   }
   if (r.rate_peak->found) {
     r.x_p = measured(r.rate_peak->x, 0.0, r.strain_unit);
-    r.Erate_max = measured(r.rate_peak->value, 0.0, rate_unit_of(r));
+    r.Erate_max = measured(r.rate_peak->value, 0.0, energy_rate_unit(r));
   }
 }
 
@@ -817,7 +767,7 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.x_c = measured(x_c.estimate, x_c.sd, r.strain_unit);
   r.F_c = measured(F_c.estimate, F_c.sd, r.force_unit);
   r.x_p = measured(x_p.estimate, x_p.sd, r.strain_unit);
-  r.Erate_max = measured(Erate.estimate, Erate.sd, rate_unit_of(r));
+  r.Erate_max = measured(Erate.estimate, Erate.sd, energy_rate_unit(r));
   if (r.energy_peak->found) {
     const auto x_m = interval(values.x_m, [](const PeakValues& v) { return v.x_m; });
     const auto E_max = interval(values.E_max, [](const PeakValues& v) { return v.E_max; });
@@ -1012,319 +962,18 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   return r;
 }
 
-namespace {
-
-nlohmann::json to_json(const Measured& m) { return io::quantity(m.value, m.error, m.unit); }
-
-template <class T>
-nlohmann::json optional_json(const std::optional<T>& v) {
-  if (!v) return nullptr;
-  if constexpr (std::is_same_v<T, Measured>)
-    return to_json(*v);
-  else
-    return *v;
-}
-
-nlohmann::json peak_json(const std::optional<PeakFit>& fit, const std::string& unit) {
-  if (!fit) return nullptr;
-  nlohmann::json j = {{"found", fit->found},
-                      {"window", io::quantity({fit->window_low, fit->window_high}, unit)},
-                      {"points", fit->points}};
-  if (!fit->found) j["problem"] = fit->problem;
-  return j;
-}
-
-}  // namespace
-
 std::string precursor_order(double ci95_low, double ci95_high) {
   if (ci95_low > 0.0) return "x_p comes before x_c (delta_x > 0 at 95 %)";
   if (ci95_high < 0.0) return "x_p comes after x_c (delta_x < 0 at 95 %)";
   return "the order of x_p and x_c is not resolved (the 95 % interval of delta_x includes 0)";
 }
 
+std::string energy_rate_unit(const AnalysisResult& result) {
+  return io::unit_ratio(result.energy_unit, result.strain_unit);
+}
+
 const char* to_string(DelayMethod method) {
   return method == DelayMethod::fitted_maxima ? "fitted-maxima" : "shift-l1";
-}
-
-namespace {
-
-// The filter actually used, with its settings.
-nlohmann::json filter_json(const AnalysisResult& r) {
-  nlohmann::json filter = {
-      {"kind", to_string(r.filter.kind)},
-      {"applied_to", {"force", "elastic_energy"}},
-      {"zero_phase", true},
-      {"discrepancy", r.filter.discrepancy},
-      {"noise_read", {{"force", noise_name(r.force_walk)}, {"elastic_energy", noise_name(r.energy_walk)}}}};
-  if (r.filter.kind == FilterKind::butterworth) {
-    filter["order"] = r.filter.butterworth_order;
-    filter["cutoff_nyquist"] = r.filter.cutoff;
-    filter["cutoff_per_strain"] =
-        io::quantity(r.filter.cutoff / (2.0 * r.step), io::unit_ratio("1", r.strain_unit));
-    filter["method"] = "forward-backward second-order sections, odd padding (sosfiltfilt)";
-  } else if (r.filter.kind == FilterKind::savitzky_golay) {
-    filter["window_samples"] = r.filter.savgol_window;
-    filter["polynomial_order"] = r.filter.savgol_order;
-  }
-  return filter;
-}
-
-// The factors an interval was sized by, the noise kind that chose them (quiet: the walk's, whatever
-// the whole record reads), and whether they are calibrated (passed a held-out check) or 1 for want
-// of one.
-nlohmann::json scales_json(const IntervalScales& scales, const AnalysisResult& r) {
-  return {{"noise", noise_kind(r)},
-          {"quiet", r.quiet},
-          {"ci68", scales.level68},
-          {"ci95", scales.level95},
-          {"calibrated", scales.calibrated}};
-}
-
-// x_c or x_p: value and sd, with the intervals and their factors where the bootstrap ran.
-nlohmann::json strain_json(const std::optional<Measured>& m, const std::optional<StrainInterval>& interval,
-                           const AnalysisResult& r) {
-  nlohmann::json j = optional_json(m);
-  if (!m || !interval) return j;
-  j["ci68"] = {interval->ci68_low, interval->ci68_high};
-  j["ci95"] = {interval->ci95_low, interval->ci95_high};
-  j["interval_scales"] = scales_json(interval->scales, r);
-  return j;
-}
-
-// δ_x with its method, intervals and distribution (null when not estimated).
-nlohmann::json delay_json(const AnalysisResult& r) {
-  if (!r.delay) return nullptr;
-  const auto& d = *r.delay;
-  nlohmann::json delta = {{"value", d.mean},
-                          {"error", d.sd},
-                          {"unit", r.strain_unit},
-                          {"method", to_string(r.delay_method)},
-                          {"map", d.map},
-                          {"mean", d.mean},
-                          {"median", d.median},
-                          {"sd", d.sd},
-                          {"ci68", {d.ci68_low, d.ci68_high}},
-                          {"ci95", {d.ci95_low, d.ci95_high}}};
-  const nlohmann::json density = {{"delta", io::quantity(d.delta, r.strain_unit)},
-                                  {"density", io::quantity(d.density, io::unit_ratio("1", r.strain_unit))}};
-  if (r.delay_method == DelayMethod::fitted_maxima) {
-    delta["model"] =
-        "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
-        "level's half-widths scaled by interval_scales (calibrated per kind of noise; 1, the bootstrap's "
-        "own, on a random walk with a stationary step: docs/analysis.md, Calibration)";
-    delta["interval_scales"] = scales_json(r.interval_scales, r);
-    delta["bias"] = r.bootstrap_bias.delta_x;
-    delta["sampling_distribution"] = density;
-  } else {
-    delta["model"] = "F(x) = c * Erate(x - delta_x), l1 misfit, c l1-optimal per delta_x (weighted median)";
-    delta["prior"] = {{"kind", "uniform"},
-                      {"range", io::quantity({d.prior_low, d.prior_high}, r.strain_unit)}};
-    delta["misfit_window"] = io::quantity({d.window_low, d.window_high}, r.strain_unit);
-    delta["misfit_samples"] = d.window_samples;
-    delta["force_noise_sigma"] = io::quantity(d.noise_sigma, r.force_unit);
-    delta["misfit_scale"] = io::quantity(d.misfit_scale, r.force_unit);
-    delta["correlation_length_samples"] = d.correlation;
-    delta["scale_at_map"] =
-        io::quantity(d.scale_at_map, io::unit_ratio(r.force_unit, per_strain(r.energy_unit, r.strain_unit)));
-    delta["at_prior_bound"] = d.at_prior_bound;
-    delta["posterior"] = density;
-  }
-  return delta;
-}
-
-// How the uncertainties were found: the bootstrap's window, replicates and fitted noise model.
-nlohmann::json uncertainty_json(const AnalysisResult& r) {
-  const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
-    return nlohmann::json{{"white_sd", io::quantity(c.white, unit)},
-                          {"walk_step_sd", io::quantity(c.walk, unit)}};
-  };
-  return {{"method",
-           "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "
-           "filtered curves, every replicate filtered, differentiated and fitted again"},
-          {"replicates", r.bootstrap_replicates},
-          {"failed_replicates", r.bootstrap_failed},
-          {"window", io::quantity({r.bootstrap_window_low, r.bootstrap_window_high}, r.strain_unit)},
-          {"systematic",
-           {{"method",
-             "added to the sd of x_c and x_p in quadrature: the maxima's shift under a filter of cutoff x "
-             "sqrt(2), "
-             "and the cubic peak fits' own error (4/3 of the shift to a fit over half the drop) beyond its "
-             "noise"},
-            {"x_c",
-             {{"smoothing_shift", io::quantity(r.smoothing_shift.x_c, r.strain_unit)},
-              {"peak_fit", io::quantity(r.peak_fit_error.x_c, r.strain_unit)}}},
-            {"x_p",
-             {{"smoothing_shift", io::quantity(r.smoothing_shift.x_p, r.strain_unit)},
-              {"peak_fit", io::quantity(r.peak_fit_error.x_p, r.strain_unit)}}}}},
-          {"noise",
-           {{"force", noise_json(r.noise_model.force, r.force_unit)},
-            {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
-            {"correlation", r.noise_model.correlation}}}};
-}
-
-// The breaking class with its reason and features (null when x_c was not found).
-nlohmann::json mechanism_json(const AnalysisResult& r) {
-  if (!r.mechanism) return nullptr;
-  const auto& f = r.features;
-  nlohmann::json crack = nullptr;
-  if (f.crack)
-    crack = {{"height_over_l0", f.crack->height},
-             {"distance_to_plate_over_l0", f.crack->to_plate},
-             {"localisation", f.crack->localisation},
-             {"planes", f.crack->planes}};
-  // A rejected curve carries no class (a ductile-like one is rejected for being ductile-like).
-  return {{"class", r.accepted ? nlohmann::json(to_string(r.mechanism->mechanism)) : nlohmann::json(nullptr)},
-          {"features_say", to_string(r.mechanism->mechanism)},
-          {"reason", r.mechanism->reason},
-          {"features",
-           {{"critical_strain", io::quantity(f.critical_strain_percent, "%")},
-            {"energy_peak_width_over_x_c", optional_json(f.energy_peak_width)},
-            {"significant_force_maxima", f.force_maxima},
-            {"break_spread_over_x_c", optional_json(f.break_spread)},
-            {"post_peak_decay_over_x_c", optional_json(f.post_peak_decay)},
-            {"loading_undulation_over_F_c", optional_json(f.loading_undulation)},
-            {"crack", crack},
-            {"Gamma", optional_json(f.gamma)}}}};
-}
-
-}  // namespace
-
-bool reads_random_walk(const AnalysisResult& r) { return r.force_walk || r.energy_walk; }
-
-bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r) || r.quiet; }
-
-bool force_walk_hidden(const AnalysisResult& r) {
-  return scored_as_random_walk(r) && r.noise_model.force.walk == 0.0 && r.noise_model.energy.walk > 0.0;
-}
-
-IntervalScales white_level_scales(const WhiteLevelScales& model, double energy_white_share) {
-  const auto& anchors = model.anchors;
-  if (!(energy_white_share >= model.calibrated_from)) return uncalibrated_scales;
-  const bool calibrated = energy_white_share <= model.calibrated_to;
-  const auto at = [&](const NoiseLevelAnchor& a) { return IntervalScales{a.level68, a.level95, calibrated}; };
-  if (energy_white_share <= anchors.front().share) return at(anchors.front());
-  for (std::size_t i = 1; i < anchors.size(); ++i) {
-    const auto &low = anchors[i - 1], &high = anchors[i];
-    if (energy_white_share > high.share) continue;
-    const double t = std::log(energy_white_share / low.share) / std::log(high.share / low.share);
-    return {(1.0 - t) * low.level68 + t * high.level68, (1.0 - t) * low.level95 + t * high.level95,
-            calibrated};
-  }
-  return at(anchors.back());
-}
-
-double energy_white_share(const AnalysisResult& r) {
-  if (!r.E_max || r.E_max->value == 0.0) return std::nan("");
-  return r.noise_model.energy.white / std::abs(r.E_max->value);
-}
-
-std::optional<double> precursor_noise_level(const AnalysisResult& r) {
-  const double share = energy_white_share(r);
-  if (scored_as_random_walk(r) || std::isnan(share)) return std::nullopt;
-  return share;
-}
-
-std::optional<double> critical_noise_level(const AnalysisResult& r) {
-  if (scored_as_random_walk(r) || !r.F_c || r.F_c->value == 0.0) return std::nullopt;
-  return r.noise_model.force.white / std::abs(r.F_c->value);
-}
-
-std::optional<double> delay_noise_level(const AnalysisResult& r) {
-  const auto energy = precursor_noise_level(r), force = critical_noise_level(r);
-  if (!energy || !force) return energy ? energy : force;
-  return std::max(*energy, *force);
-}
-
-IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
-  if (const auto level = precursor_noise_level(r)) return white_level_scales(precursor_white_levels, *level);
-  return precursor_strain_scales.for_noise(scored_as_random_walk(r), walk_profile);
-}
-
-namespace {
-// A kind's factors, the white ones not calibrated below white_factors_checked_from.
-IntervalScales checked_from_level(const NoiseIntervalScales& kinds, const AnalysisResult& r,
-                                  bool walk_profile, std::optional<double> level) {
-  IntervalScales scales = kinds.for_noise(scored_as_random_walk(r), walk_profile);
-  if (level && !(*level >= white_factors_checked_from)) scales.calibrated = false;
-  return scales;
-}
-}  // namespace
-
-IntervalScales delay_scales(const AnalysisResult& r, bool walk_profile) {
-  return checked_from_level(delta_interval_scales, r, walk_profile, delay_noise_level(r));
-}
-
-IntervalScales critical_scales(const AnalysisResult& r, bool walk_profile) {
-  return checked_from_level(critical_strain_scales, r, walk_profile, critical_noise_level(r));
-}
-
-std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }
-
-std::string noise_kind(const AnalysisResult& r) { return std::string(noise_name(scored_as_random_walk(r))); }
-
-nlohmann::json to_json(const AnalysisResult& r) {
-  nlohmann::json j;
-  j["source"] = r.source;
-  j["accepted"] = r.accepted;
-  j["rejection"] = r.accepted ? nlohmann::json(nullptr) : nlohmann::json(r.rejection);
-  j["warnings"] = r.warnings;
-  j["resample"] = {{"input_rows", r.resample.input_rows},
-                   {"was_sorted", r.resample.was_sorted},
-                   {"duplicates_merged", r.resample.duplicates_merged},
-                   {"was_uniform", r.resample.was_uniform},
-                   {"resampled", r.resample.resampled},
-                   {"on_lattice", r.resample.on_lattice},
-                   {"output_rows", r.resample.output_rows},
-                   {"block_average", r.resample.block_average},
-                   {"step", io::quantity(r.resample.step, r.strain_unit)}};
-  j["filter"] = filter_json(r);
-  j["derivative"] = {{"method", "Savitzky-Golay, cubic"}, {"window_samples", r.derivative_window}};
-  // The curves the maxima were sought on, on the uniform grid x_i = x0 + i * step: what a figure
-  // draws, without running the analysis again (empty when the curve was rejected before filtering).
-  j["curves"] = {{"x0", io::quantity(r.x0, r.strain_unit)},
-                 {"step", io::quantity(r.step, r.strain_unit)},
-                 {"filtered_force", io::quantity(r.filtered_force, r.force_unit)},
-                 {"filtered_elastic_energy", io::quantity(r.filtered_energy, r.energy_unit)},
-                 {"energy_rate", io::quantity(r.energy_rate, per_strain(r.energy_unit, r.strain_unit))}};
-  j["noise"] = {{"force", io::quantity(r.force_noise, r.force_unit)},
-                {"elastic_energy", io::quantity(r.energy_noise, r.energy_unit)},
-                {"estimator", "rms of third differences / sqrt(20), largest 0.5 % trimmed"}};
-  j["x_c"] = strain_json(r.x_c, r.x_c_interval, r);
-  j["F_c"] = optional_json(r.F_c);
-  j["x_m"] = optional_json(r.x_m);
-  j["E_max"] = optional_json(r.E_max);
-  j["x_p"] = strain_json(r.x_p, r.x_p_interval, r);
-  j["Erate_max"] = optional_json(r.Erate_max);
-  j["peak_fits"] = {{"force", peak_json(r.force_peak, r.strain_unit)},
-                    {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},
-                    {"energy_rate", peak_json(r.rate_peak, r.strain_unit)},
-                    {"method", "cubic least squares around the largest sample; stationary point"}};
-  j["delta_x"] = delay_json(r);
-  // The levels x_p's and δ_x's white factors followed (shares of the peaks), so a reader sees why an
-  // interval is or is not calibrated.
-  if (const auto level = precursor_noise_level(r); level && j["x_p"].contains("interval_scales"))
-    j["x_p"]["interval_scales"]["energy_white_share"] = *level;
-  if (const auto level = critical_noise_level(r); level && j["x_c"].contains("interval_scales"))
-    j["x_c"]["interval_scales"]["force_white_share"] = *level;
-  if (const auto level = delay_noise_level(r);
-      level && j["delta_x"].is_object() && j["delta_x"].contains("interval_scales"))
-    j["delta_x"]["interval_scales"]["white_share"] = *level;
-  j["delta_x_direct"] = optional_json(r.delta_x_direct);
-  j["loading_phase_end"] = io::quantity(r.loading_phase_end, r.strain_unit);
-  j["collapse_onset"] =
-      r.collapse_onset ? io::quantity(*r.collapse_onset, r.strain_unit) : nlohmann::json(nullptr);
-  j["uncertainty"] = uncertainty_json(r);
-  j["Gamma"] = optional_json(r.Gamma);
-  j["A_r"] = optional_json(r.A_r);
-  j["alpha"] = {{"from_delta_over_x_p", optional_json(r.alpha.alpha)},
-                {"ci68", {optional_json(r.alpha.alpha_low), optional_json(r.alpha.alpha_high)}},
-                {"fbm_band", {0.0, 5.0}},
-                {"Gamma_band", {r.alpha.gamma_band_low, r.alpha.gamma_band_high}},
-                {"A_r_band", {r.alpha.energy_ratio_band_low, r.alpha.energy_ratio_band_high}},
-                {"Gamma_in_band", optional_json(r.alpha.gamma_in_band)},
-                {"A_r_in_band", optional_json(r.alpha.energy_ratio_in_band)}};
-  j["mechanism"] = mechanism_json(r);
-  return j;
 }
 
 }  // namespace rupture::analysis

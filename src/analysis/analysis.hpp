@@ -338,6 +338,8 @@ IntervalScales precursor_scales(const AnalysisResult& result, bool walk_profile)
 // white_factors_checked_from.
 IntervalScales delay_scales(const AnalysisResult& result, bool walk_profile);
 IntervalScales critical_scales(const AnalysisResult& result, bool walk_profile);
+// The unit of ℰ = dE_e/dx: E_e's unit per strain unit.
+std::string energy_rate_unit(const AnalysisResult& result);
 // A noise kind in words, as analysis.json, the terminal and the calibration files write it.
 std::string_view noise_name(bool random_walk);
 // The kind the intervals take, in words, as written to analysis.json beside the factors.

@@ -1,0 +1,37 @@
+// analysis/collapse: see collapse.hpp.
+#include "analysis/collapse.hpp"
+
+#include <algorithm>
+
+namespace rupture::analysis {
+
+std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::size_t force_top,
+                                                double collapse_level, std::size_t width) {
+  std::size_t fallen = force_top + 1;
+  while (fallen < force.size() && force[fallen] >= collapse_level) ++fallen;
+  if (fallen >= force.size() || width == 0) return std::nullopt;
+  const std::size_t start = fallen > width ? fallen - width : 0;
+  if (force[start] < 2.0 * collapse_level) return std::nullopt;
+  std::size_t onset = fallen - 1;
+  while (force[onset] < 2.0 * collapse_level) --onset;
+  while (onset > start && force[onset - 1] > force[onset]) --onset;
+  return onset;
+}
+
+std::size_t collapse_width(std::size_t force_top, const FilterSettings& filter) {
+  return std::min(2 * edge_samples(filter), force_top / 20);
+}
+
+void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
+                        std::vector<double>& filtered) {
+  const std::size_t need = minimum_samples(filter);
+  if (onset + 1 < need) return;
+  const auto loading = filter_continuing_end(filter, raw.first(onset + 1));
+  std::copy(loading.begin(), loading.end(), filtered.begin());
+  const auto collapse = raw.subspan(onset + 1);
+  const auto smooth = collapse.size() < need ? std::vector<double>(collapse.begin(), collapse.end())
+                                             : apply_filter(filter, collapse);
+  std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(onset + 1));
+}
+
+}  // namespace rupture::analysis
