@@ -3,10 +3,11 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-26|all]
-// [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between: the noise groups,
-// default all; mixed: bundles whose F also carries white noise, as DEM curves do; white-between: white
-// noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and 0.14 %]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-27|all]
+// [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between|brittle: the noise
+// groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do; white-between:
+// white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and 0.14 %; brittle:
+// curves cut by a sharp collapse at 1.03-1.5 x_c, calibration_set.hpp]
 // [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
 // stationary-walk: one step along the curve]. The per-curve file holds each curve's truth, estimates,
 // intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
@@ -40,7 +41,7 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-26, all\n",
+                 "held-out-27, all\n",
                  which.c_str());
     return 2;
   }
@@ -51,10 +52,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed" &&
-      kinds != "white-between" && kinds != "white-low" && kinds != "white-low-between") {
+      kinds != "white-between" && kinds != "white-low" && kinds != "white-low-between" &&
+      kinds != "brittle") {
     std::fprintf(stderr,
                  "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed, "
-                 "white-between, white-low or white-low-between\n",
+                 "white-between, white-low, white-low-between or brittle\n",
                  kinds.c_str());
     return 2;
   }
@@ -71,7 +73,7 @@ int main(int argc, char** argv) {
                  "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
                  "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
                  "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share,"
-                 "noise_read\n";
+                 "noise_read,collapse_cut,collapse_onset\n";
     per_curve.precision(10);
   }
   AnalysisOptions
@@ -86,6 +88,7 @@ int main(int argc, char** argv) {
                       : kinds == "white-between"     ? between_noise_groups()
                       : kinds == "white-low"         ? low_noise_groups()
                       : kinds == "white-low-between" ? low_between_noise_groups()
+                      : kinds == "brittle"           ? brittle_noise_groups()
                                                      : noise_groups();
   for (const auto& g : groups) {
     if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
@@ -121,7 +124,10 @@ int main(int argc, char** argv) {
         } else {
           per_curve << ",,,,,,," << t.x_c << ",,," << t.x_p << ",,,,,,,,,,,,,";
         }
-        per_curve << ',' << noise_name(reads_random_walk(r));
+        per_curve << ',' << noise_name(reads_random_walk(r)) << ',';
+        if (g.collapse) per_curve << collapse_cut(s, seed);
+        per_curve << ',';
+        if (r.collapse_onset) per_curve << *r.collapse_onset;
         per_curve << '\n' << std::flush;
       }
       if (!r.accepted || !r.delay) {

@@ -227,6 +227,11 @@ inline const HeldOutSet later_held_out_sets[] = {
     // white-low-between: white noise at 0.06, 0.08, 0.1 and 0.14 %).
     {"held-out-26", 4.2, 0.096, 0.14, 0.88, 0.36, 6.7, {"weibull mixture k=3.1 69/31 x1.6", 0.69, 3.1, 1.6, 3}},
     {"held-out-26", 5.2, -0.18, 0.078, 0.98, 0.49, 2.3, {"weibull mixture k=4.1 46/54 x1.5", 0.46, 4.1, 1.5, 2.4}},
+    // Twelve shapes drawn by bench/draw_held_out.py 27, fixed before factors for curves cut by a sharp
+    // collapse (learned on the tuning set's brittle groups) were checked anywhere (brittle); run once
+    // for them (docs/analysis.md, "Intervals of a curve cut by a collapse").
+    {"held-out-27", 3.7, 0.25, 0.12, 0.95, 0.34, 6.2, {"weibull mixture k=3.3 51/49 x1.4", 0.51, 3.3, 1.4, 2.5}},
+    {"held-out-27", 2.7, 1.3, 0.032, 0.98, 0.27, 4.1, {"weibull mixture k=4.6 51/49 x1.3", 0.51, 4.6, 1.3, 2}},
 };
 // clang-format on
 
@@ -317,7 +322,7 @@ inline bool in_first_held_out(const Shape& s) {
   return s.name.rfind("lognormal", 0) == 0 || s.name == "weibull mixture" || s.name == "powerlaw alpha=10";
 }
 
-// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-26,
+// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-27,
 // all; a held-out name's rows in order); empty for any other name.
 inline std::vector<Shape> calibration_set(const std::string& name) {
   std::vector<Shape> chosen;
@@ -339,6 +344,7 @@ struct NoiseGroup {
   double level = 0.0;        // white noise on F and E_e, fraction of each peak
   std::size_t fibers = 0;    // finite bundle
   double force_white = 0.0;  // white noise on F alone, fraction of its peak
+  bool collapse = false;     // a sharp collapse after the force peak (collapse_cut)
 };
 inline std::vector<NoiseGroup> noise_groups() {
   return {{"white 0.2 %", 0.002, 0},  {"white 1 %", 0.01, 0},      {"white 3 %", 0.03, 0},
@@ -369,6 +375,38 @@ inline std::vector<NoiseGroup> mixed_noise_groups() {
   return {{"bundle N=1e4 + F white 1 %", 0, 10000, 0.01}, {"bundle N=1e5 + F white 1 %", 0, 100000, 0.01}};
 }
 
+// A brittle sample's curve: the force and energy held from b x_c on and falling by e every 3 rows, with
+// b drawn per curve in [1.03, 1.5] (the default study's run breaks at about 1.07 x_c). Under white
+// noise the collapse replaces the exact curve beneath the noise; a bundle is held at its value at
+// the cut (docs/analysis.md, "A collapse the filter cannot follow").
+inline std::vector<NoiseGroup> brittle_noise_groups() {
+  // F: 0.2 % plus 1.99 % on F alone, 2.0 % in all; E_e 0.2 %: the proportions of rupture's own runs.
+  return {{"brittle F 2 % E_e 0.2 %", 0.002, 0, 0.0199, true},
+          {"brittle white 1 %", 0.01, 0, 0.0, true},
+          {"brittle bundle N=1e5 + F white 1 %", 0, 100000, 0.01, true}};
+}
+inline double collapse_cut(const Shape& s, std::uint64_t seed) {
+  Rng rng(seed, RandomStream::analysis_noise, 10);
+  return (1.03 + 0.47 * rng.uniform01()) * truth(s).x_c;
+}
+// White noise stays on the collapse (the exact curve beneath it is replaced); a bundle's curve has no
+// separate noise and is held at its last sample before the cut.
+inline void cut_at_collapse(Curve& c, const Shape& s, double cut, bool white_noise) {
+  const double step = c.strain[1] - c.strain[0];
+  std::size_t held = 0;
+  while (held + 1 < c.strain.size() && c.strain[held + 1] <= cut) ++held;
+  const double from = white_noise ? cut : c.strain[held];
+  const double force_held = white_noise ? force_of(s, cut) : c.force[held];
+  const double energy_held = white_noise ? energy_of(s, cut) : c.energy[held];
+  for (std::size_t i = held + 1; i < c.strain.size(); ++i) {
+    const double x = c.strain[i], fall = std::exp(-(x - from) / (3.0 * step));
+    const double force_noise = white_noise ? c.force[i] - force_of(s, x) : 0.0;
+    const double energy_noise = white_noise ? c.energy[i] - energy_of(s, x) : 0.0;
+    c.force[i] = force_held * fall + force_noise;
+    c.energy[i] = energy_held * fall + energy_noise;
+  }
+}
+
 // Curve k of a group: the set's shapes in turn, then 300, 1000 and 5000 rows in turn, seed 1000 k + 17.
 struct CalibrationCase {
   const Shape& shape;
@@ -384,6 +422,8 @@ struct CalibrationCase {
   Curve draw(const NoiseGroup& g) const {
     Curve c = g.fibers > 0 ? finite_bundle_curve(shape, rows, g.fibers, seed)
                            : white_noise_curve(shape, rows, g.level, seed);
+    if (g.collapse) cut_at_collapse(c, shape, collapse_cut(shape, seed), g.fibers == 0);
+    if (g.collapse) c.source += " collapse";
     if (g.force_white > 0.0) {
       const double F_c = truth(shape).F_c;
       Rng rng(seed, RandomStream::analysis_noise, 9);
