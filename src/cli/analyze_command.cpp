@@ -62,10 +62,11 @@ void print_input(const analysis::AnalysisResult& r, std::FILE* out) {
 }
 
 // Under an interval whose white noise lies outside the range its factors were checked on
-// [checked_from, checked_to]: that level and the range (another reason is a warning of its own).
-void print_level_note(std::FILE* out, const char* name, const char* noise, std::optional<double> level,
-                      double checked_from, double checked_to) {
-  if (!level || (*level >= checked_from && *level <= checked_to)) return;
+// [checked_from, checked_to]: that level and the range (another reason is a warning of its own). Not
+// on a curve cut by a sharp collapse, whose factors follow no level (the warning says why).
+void print_level_note(std::FILE* out, const analysis::AnalysisResult& r, const char* name, const char* noise,
+                      std::optional<double> level, double checked_from, double checked_to) {
+  if (r.collapse_onset || !level || (*level >= checked_from && *level <= checked_to)) return;
   const std::string checked = std::isfinite(checked_to)
                                   ? fmt::format("{:g}-{:g} %", 100.0 * checked_from, 100.0 * checked_to)
                                   : fmt::format("{:g} % and above", 100.0 * checked_from);
@@ -87,12 +88,12 @@ void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
   const double from = analysis::white_factors_checked_from, above = std::numeric_limits<double>::infinity();
   strain_line("x_c", r.x_c, r.x_c_interval);
   if (r.x_c_interval)
-    print_level_note(out, "x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r), from,
+    print_level_note(out, r, "x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r), from,
                      above);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
   if (r.x_p_interval)
-    print_level_note(out, "x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
+    print_level_note(out, r, "x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
                      analysis::precursor_white_levels.calibrated_from,
                      analysis::precursor_white_levels.calibrated_to);
   line("Erate_max", r.Erate_max);
@@ -104,7 +105,7 @@ void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
                d.mean, d.sd, r.strain_unit, analysis::to_string(r.delay_method), d.ci68_low, d.ci68_high,
                d.ci95_low, d.ci95_high, analysis::calibration_mark(r.interval_scales.calibrated));
     if (r.delay_method == analysis::DelayMethod::fitted_maxima)
-      print_level_note(out, "delta_x", "the larger white noise of F and E_e, share of its peak:",
+      print_level_note(out, r, "delta_x", "the larger white noise of F and E_e, share of its peak:",
                        analysis::delay_noise_level(r), from, above);
   }
   line("Gamma", r.Gamma);

@@ -52,6 +52,33 @@ TEST(AnalyzeCli, AQuietCurvesIntervalsSayTheyAreSizedForARandomWalk) {
   EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], "random walk");
 }
 
+// A uniform bundle's curve that falls by e every 3 rows from 1.05 x_c on, with E_e's white noise at
+// 0.05 % of its top, below the levels x_p's white factors follow: the curve is cut by a collapse, on
+// which no factors follow a level, so the terminal names the collapse (a warning) and no level.
+TEST(AnalyzeCli, ACurveCutByACollapseGetsNoNoiseLevelNote) {
+  TempDir dir;
+  auto c = testing::power_law_curve(0.0, 1001);
+  const double step = c.strain[1] - c.strain[0], cut = 1.05 * 0.5;
+  std::size_t held = 0;
+  while (c.strain[held + 1] <= cut) ++held;
+  for (std::size_t i = held + 1; i < c.strain.size(); ++i) {
+    const double fall = std::exp(-(c.strain[i] - c.strain[held]) / (3.0 * step));
+    c.force[i] = c.force[held] * fall;
+    c.energy[i] = c.energy[held] * fall;
+  }
+  testing::add_noise(c, 0.005, 3e-5, 5);
+  write_curve(dir / "curve.csv", c, "strain[1],force[1],elastic_energy[1]");
+  const auto r = run_rupture("analyze " + quoted(dir / "curve.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "analysis.json"));
+  ASSERT_TRUE(j["collapse_onset"].is_object()) << r.out;
+  EXPECT_LT(j["x_p"]["interval_scales"]["energy_white_share"].get<double>(),
+            precursor_white_levels.calibrated_from);
+  EXPECT_NE(r.err.find("collapse too sharp for the filter"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("factors are calibrated for"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("not calibrated"), std::string::npos) << r.out;
+}
+
 TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   TempDir dir;
   auto c = testing::power_law_curve(0.0, 2001);
