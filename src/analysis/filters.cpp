@@ -271,18 +271,16 @@ std::vector<double> filter_continuing_end(const FilterSettings& settings, std::s
   FilterSettings chosen = settings;
   const std::size_t edge = edge_samples(settings), n = y.size();
   if (edge < 3 || n < 2 * edge) return apply_filter(chosen, y);
-  // The line a + slope * t through the last `edge` samples, t counted in samples from the last one.
-  const double count = static_cast<double>(edge), mean_t = -(count - 1.0) / 2.0;
-  double mean_y = 0.0;
-  for (std::size_t i = 0; i < edge; ++i) mean_y += y[n - 1 - i];
-  mean_y /= count;
-  double stt = 0.0, sty = 0.0;
-  for (std::size_t i = 0; i < edge; ++i) {
-    const double dt = -static_cast<double>(i) - mean_t;
-    stt += dt * dt;
-    sty += dt * (y[n - 1 - i] - mean_y);
+  // The least-squares line through the last `edge` samples (Savitzky–Golay weights of order 1): its
+  // value and slope at the last sample.
+  const auto window = static_cast<int>(edge);
+  const auto value_weights = savgol_coefficients(window, 1, 0, window - 1.0);
+  const auto slope_weights = savgol_coefficients(window, 1, 1, window - 1.0);
+  double end_value = 0.0, slope = 0.0;
+  for (std::size_t j = 0; j < edge; ++j) {
+    end_value += value_weights[j] * y[n - edge + j];
+    slope += slope_weights[j] * y[n - edge + j];
   }
-  const double slope = sty / stt, end_value = mean_y - slope * mean_t;
   std::vector<double> continued(y.begin(), y.end());
   continued.reserve(n + 2 * edge);
   for (std::size_t i = 1; i <= 2 * edge; ++i) continued.push_back(end_value + slope * static_cast<double>(i));
