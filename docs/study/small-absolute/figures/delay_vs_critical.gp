@@ -1,5 +1,5 @@
-# rupture 0.1.0 (4c3934c) plot /tmp/rean3/small-absolute
-# read: /tmp/rean3/small-absolute/results.csv
+# rupture 0.1.0 (f28c063) plot /tmp/rean5/small-absolute
+# read: /tmp/rean5/small-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (4c3934c) plot /tmp/rean3/small-relative
-# read: /tmp/rean3/small-relative/results.csv
+# rupture 0.1.0 (f28c063) plot /tmp/rean5/small-relative
+# read: /tmp/rean5/small-relative/results.csv
 # Draws mechanism_map.png, mechanism_map.svg and/or mechanism_map.pdf from mechanism_map.dat. Rerun in this folder with: gnuplot mechanism_map.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (4c3934c) plot /tmp/rean3/tissue-absolute
-# read: /tmp/rean3/tissue-absolute/results.csv
+# rupture 0.1.0 (f28c063) plot /tmp/rean5/tissue-absolute
+# read: /tmp/rean5/tissue-absolute/results.csv
 # Draws delay_vs_critical.png, delay_vs_critical.svg and/or delay_vs_critical.pdf from delay_vs_critical.dat. Rerun in this folder with: gnuplot delay_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -38,8 +38,8 @@ do for [format in formats] {
   set title "Delay of failure behind the precursor (6 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "delay δ_x = x_c - x_p [%]"
-  set xrange [0.02465717601420656:0.8829915338343448]
-  set yrange [3.0891172754969306e-05:0.8829915338343448]
+  set xrange [0.024657176014206566:0.8829915338343451]
+  set yrange [3.0891172754977254e-05:0.8829915338343451]
   set logscale x 10
   set xtics (0.05, 0.1, 0.2, 0.5)
   set format x "%g"

@@ -1,5 +1,5 @@
-# rupture 0.1.0 (4c3934c) plot /tmp/rean3/tissue-absolute
-# read: /tmp/rean3/tissue-absolute/results.csv
+# rupture 0.1.0 (f28c063) plot /tmp/rean5/tissue-absolute
+# read: /tmp/rean5/tissue-absolute/results.csv
 # Draws energy_ratio_vs_critical.png, energy_ratio_vs_critical.svg and/or energy_ratio_vs_critical.pdf from energy_ratio_vs_critical.dat. Rerun in this folder with: gnuplot energy_ratio_vs_critical.gp
 # Restyle here: sizes, fonts, line width and colours; the formats drawn are listed in `formats`.
 formats = "png svg pdf"
@@ -38,7 +38,7 @@ do for [format in formats] {
   set title "Energy ratio A_r against critical strain (6 analysed points)"
   set xlabel "critical strain x_c [%]"
   set ylabel "A_r = E_{max} / (x_p ℰ_{max}) [1]"
-  set xrange [0.02465717601420656:0.8829915338343448]
+  set xrange [0.024657176014206566:0.8829915338343451]
   set yrange [0:1.7249999999999999]
   set logscale x 10
   set xtics (0.05, 0.1, 0.2, 0.5)
