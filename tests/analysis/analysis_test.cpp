@@ -767,7 +767,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-25").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-26").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-27").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-28").empty());
+  EXPECT_EQ(calibration_set("held-out-28").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-29").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
