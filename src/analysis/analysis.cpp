@@ -131,9 +131,21 @@ AlphaEstimate alpha_estimate(const DelayPosterior& delay, const Measured& x_p,
 
 CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& choice) {
   CurveColumns c;
-  c.strain = pick_column(table, choice.strain, {"strain"}, "--strain");
-  c.force = pick_column(table, choice.force, {"force", "force_top"}, "--force");
-  c.energy = pick_column(table, choice.energy, {"elastic_energy"}, "--energy");
+  // A run's rows averaged over their interval, where the file has them and no column is named: single
+  // samples alias the sample's ringing, and δ_x then moves with the step the rows start at
+  // (docs/analysis.md, "Where the rows fall").
+  const bool row_means = choice.strain.empty() && choice.force.empty() && choice.energy.empty() &&
+                         table.find("strain_mean") && table.find("force_top_mean") &&
+                         table.find("elastic_energy_mean");
+  if (row_means) {
+    c.strain = *table.find("strain_mean");
+    c.force = *table.find("force_top_mean");
+    c.energy = *table.find("elastic_energy_mean");
+  } else {
+    c.strain = pick_column(table, choice.strain, {"strain"}, "--strain");
+    c.force = pick_column(table, choice.force, {"force", "force_top"}, "--force");
+    c.energy = pick_column(table, choice.energy, {"elastic_energy"}, "--energy");
+  }
   c.strain_unit = unit_of(table, c.strain, choice.strain_unit, "--strain-unit", c.warnings);
   c.force_unit = unit_of(table, c.force, choice.force_unit, "--force-unit", c.warnings);
   c.energy_unit = unit_of(table, c.energy, choice.energy_unit, "--energy-unit", c.warnings);

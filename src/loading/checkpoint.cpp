@@ -136,6 +136,12 @@ void visit_fields(Io& io, C& c) {
   io("load_free.load_free", free.load_free);
   io("load_free.free_since", free.free_since);
   io("wall_seconds", l.wall_seconds);
+  if (c.format >= 3) {
+    io("row_means.strain", l.row_means.strain);
+    io("row_means.force_top", l.row_means.force_top);
+    io("row_means.elastic_energy", l.row_means.elastic_energy);
+    io("row_means.samples", l.row_means.samples);
+  }
   auto& e = c.engine;
   io("step", e.step);
   io("time", e.time);
@@ -243,7 +249,7 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& source) {
   std::uint64_t payload_size = 0, stored = 0;
   std::memcpy(&version, bytes.data() + sizeof magic, sizeof version);
   std::memcpy(&payload_size, bytes.data() + sizeof magic + 4, sizeof payload_size);
-  if (version != checkpoint_format_version && version != 1)
+  if (version < 1 || version > checkpoint_format_version)
     fail("version", fmt::format("format version {} is not one this rupture reads (1 to {})", version,
                                 checkpoint_format_version));
   if (payload_size != bytes.size() - header_size - checksum_size)

@@ -19,10 +19,17 @@ namespace rupture::loading {
 
 // Written into every checkpoint. A reader takes this one and format 1 (rupture 0.1, which did not
 // record the prefix hashes) and refuses any other.
-inline constexpr std::uint32_t checkpoint_format_version = 2;
+inline constexpr std::uint32_t checkpoint_format_version = 3;
 
 // The run loop's own state between two steps (besides the engine's). The live monitor is not
 // stored: it only ever consumed the curves.csv rows, so a resume replays them.
+// The running sums of one curves.csv row's means: strain (%), top plate force (N) and elastic energy
+// (mJ), sampled every row_mean_stride steps since the previous row.
+struct RowMeans {
+  double strain = 0.0, force_top = 0.0, elastic_energy = 0.0;
+  std::uint64_t samples = 0;
+};
+
 struct LoopState {
   std::uint64_t curves_bytes = 0;  // bytes of curves.csv written and synced at this step
   std::uint64_t curves_rows = 0;   // data rows among them
@@ -40,6 +47,7 @@ struct LoopState {
   LoadFreeWatch::State load_free;          // the load-free rule's running sums
   std::vector<io::PvdEntry> snapshots;     // the snapshots.pvd list so far
   double wall_seconds = 0.0;               // s of wall time spent before this checkpoint
+  RowMeans row_means;                      // the sums of the curves.csv row being averaged (format 3)
 };
 
 struct Checkpoint {

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <memory>
 
 #include "analysis/monitor.hpp"
@@ -57,12 +58,24 @@ const std::vector<std::string> curve_header = {"time[s]",
                                                "damping_energy[mJ]",
                                                "intact_bonds[1]",
                                                "broken_bonds[1]",
-                                               "contacts[1]"};
+                                               "contacts[1]",
+                                               "strain_mean[%]",
+                                               "force_top_mean[N]",
+                                               "elastic_energy_mean[mJ]"};
+// Samples each row's means are taken from: every output.interval / row_mean_samples steps (at least
+// every step) since the previous row. Twenty per row are enough: on the default study's run, rows
+// every 200 and 400 steps averaged so over their interval give δ_x the same to 0.004 and 0.0006 %
+// whichever step they start at, where single samples move it by 0.024 and 0.011 % (docs/analysis.md,
+// "Where the rows fall").
+constexpr std::int64_t row_mean_samples = 20;
 // What curves.csv's and breaks.csv's columns mean beyond their names and units (run.json "columns").
 const nlohmann::json column_definitions = {
     {"strain", "plate displacement / initial plate separation * 100 %"},
     {"force_top", "force on the moving (top) plate, positive in tension"},
     {"force_bottom", "force on the fixed (bottom) plate, positive in tension"},
+    {"strain_mean, force_top_mean, elastic_energy_mean",
+     "means over the row's output interval (sampled every interval/20 steps since the previous row): "
+     "the curve rupture analyze reads, free of the aliasing of vibrations faster than the rows"},
     {"x, y, z", "midpoint of the broken bond"},
     {"particle_a, particle_b", "ids of the broken bond's particles, as in the sample"}};
 const std::vector<std::string> break_header = {"step[1]",         "time[s]",   "strain[%]", "particle_a[1]",
@@ -208,6 +221,14 @@ void replay(analysis::Monitor& monitor, const std::filesystem::path& curves_file
   for (std::size_t r = 0; r < loop.curves_rows; ++r) (void)monitor.add_point(strain[r], force[r], energy[r]);
 }
 
+// Whether a curves.csv header names the means' columns (a folder written before them does not).
+bool has_row_means(const std::filesystem::path& curves_file) {
+  std::ifstream in(curves_file);
+  std::string header;
+  std::getline(in, header);
+  return header.find("strain_mean[") != std::string::npos;
+}
+
 // What a resume starts from: the checkpoint with its file and warnings, the resuming command, and
 // the folder's lock, taken before anything in it was read.
 struct ResumePoint {
@@ -238,6 +259,7 @@ class TensionRun {
         curves_file_(folder / "curves.csv"),
         breaks_file_(folder / "breaks.csv"),
         monitor_(monitor_options(config)) {
+    row_mean_stride_ = std::uint64_t(std::max<std::int64_t>(1, config.output_interval / row_mean_samples));
     // What the sample holds before the first step (bonds whose rest lengths differ from the initial
     // distances: a pre-stressed sample, e.g. LAMMPS's binned rest lengths). The energy balance
     // counts from it: W = (E now) - (E at the start). Taken from the sample, so a resumed run has it.
@@ -298,6 +320,7 @@ class TensionRun {
             "the run folder was changed after the checkpoint; restore it, or remove its checkpoints "
             "and start over with --overwrite");
     if (config_.monitor) replay(monitor_, curves_file_, loop_);
+    with_row_means_ = has_row_means(curves_file_);
     curves_ = std::make_unique<io::CsvStream>(curves_file_, curves_prefix);
     breaks_ = std::make_unique<io::CsvStream>(breaks_file_, breaks_prefix);
     // Earlier resumes stay listed in run.json.
@@ -364,6 +387,7 @@ class TensionRun {
       write_breaks();
       const std::uint64_t done = n + 1;
       const double strain = strain_now();
+      if (with_row_means_ && done % row_mean_stride_ == 0) add_row_sample(strain);
       if (done % std::uint64_t(config_.output_interval) == 0 && !(stable_ = record_row())) break;
       if (config_.snapshot_interval > 0 && done % std::uint64_t(config_.snapshot_interval) == 0) snapshot();
       if (!loop_.separated && done % std::uint64_t(config_.separation_check_interval) == 0)
@@ -421,6 +445,14 @@ class TensionRun {
     return !summary_.stop_reason.empty();
   }
 
+  void add_row_sample(double strain) {
+    RowMeans& m = loop_.row_means;
+    m.strain += strain;
+    m.force_top += system_.force_top();
+    m.elastic_energy += system_.energies().elastic;
+    ++m.samples;
+  }
+
   // A curves.csv row, the monitor fed, the caller's on_row asked, and the energy balance checked:
   // false when it shows an instability (instability_ says what gave it away).
   bool record_row() {
@@ -429,10 +461,32 @@ class TensionRun {
     // Energy gained since the start: what the plates' work must pay for.
     const double total = e.elastic + e.kinetic + e.contact + e.glue + system_.released_energy() +
                          system_.damping_energy() - initial_energy_;
-    curves_->row({system_.time(), double(system_.steps_done()), strain_now(), system_.force_top(),
-                  system_.force_bottom(), e.elastic, e.kinetic, e.contact, e.glue, w,
-                  system_.released_energy(), system_.damping_energy(), double(system_.intact_bonds()),
-                  double(broken_bonds()), double(e.contacts)});
+    std::vector<double> row{system_.time(),
+                            double(system_.steps_done()),
+                            strain_now(),
+                            system_.force_top(),
+                            system_.force_bottom(),
+                            e.elastic,
+                            e.kinetic,
+                            e.contact,
+                            e.glue,
+                            w,
+                            system_.released_energy(),
+                            system_.damping_energy(),
+                            double(system_.intact_bonds()),
+                            double(broken_bonds()),
+                            double(e.contacts)};
+    if (with_row_means_) {
+      // The first row (step 0) has no samples: its means are the instant's values.
+      RowMeans& m = loop_.row_means;
+      const double n = double(m.samples);
+      if (m.samples > 0)
+        row.insert(row.end(), {m.strain / n, m.force_top / n, m.elastic_energy / n});
+      else
+        row.insert(row.end(), {strain_now(), system_.force_top(), e.elastic});
+      m = {};
+    }
+    curves_->row(row);
     curves_->flush();
     ++loop_.curves_rows;
     loop_.last_recorded = system_.steps_done();
@@ -650,6 +704,10 @@ class TensionRun {
 
   // What the loop carries (a checkpoint saves loop_), and how it ended.
   LoopState loop_;
+  // Whether curves.csv has the means' columns: always, except in a run resumed from a folder written
+  // before them, whose rows keep the columns its header names.
+  bool with_row_means_ = true;
+  std::uint64_t row_mean_stride_ = 1;  // steps between the samples of a row's means
   analysis::Monitor monitor_;
   UnionFind sets_;
   RunSummary summary_;

@@ -16,6 +16,7 @@
 #include "calibration_set.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
+#include "io/csv.hpp"
 #include "synthetic_curves.hpp"
 
 namespace rupture::analysis {
@@ -24,6 +25,27 @@ namespace {
 using testing::add_noise;
 using testing::force_first_curve;
 using testing::power_law_curve;
+
+// A run's curves.csv: the means over each row's interval are read where all three are there and no
+// column is named; naming one, or a file without one of them, reads the rows' single samples.
+TEST(CurveColumns, ARunsRowMeansAreReadAsASetUnlessAColumnIsNamed) {
+  const std::string header =
+      "time[s],strain[%],force_top[N],elastic_energy[mJ],strain_mean[%],force_top_mean[N],elastic_energy_"
+      "mean[mJ]\n";
+  const auto table = io::parse_csv(header + "0,0,0,0,0,0,0\n1,2,3,4,5,6,7\n", "curves.csv");
+  const auto means = find_curve_columns(table);
+  EXPECT_EQ(std::tuple(means.strain, means.force, means.energy), std::tuple(4u, 5u, 6u));
+  EXPECT_EQ(select_curve(table).force_column, "force_top_mean[N]");
+  ColumnChoice force_named;
+  force_named.force = "force_top";
+  const auto named = find_curve_columns(table, force_named);
+  EXPECT_EQ(std::tuple(named.strain, named.force, named.energy), std::tuple(1u, 2u, 3u));
+  const auto without = io::parse_csv(
+      "strain[%],force_top[N],elastic_energy[mJ],strain_mean[%],force_top_mean[N]\n0,0,0,0,0\n1,2,3,4,5\n",
+      "old.csv");
+  const auto plain = find_curve_columns(without);
+  EXPECT_EQ(std::tuple(plain.strain, plain.force, plain.energy), std::tuple(0u, 1u, 2u));
+}
 
 TEST(AnalyzeCurve, UniformBundleRecoversClosedForms) {
   const auto r = analyze_curve(power_law_curve(0.0, 2001), {});

@@ -106,7 +106,7 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   EXPECT_EQ(report["plan"]["dt"]["unit"], "s");
   EXPECT_EQ(report["sample"]["glued_layer_heights"]["top"]["unit"], "mm");
   const auto curves = io::read_csv(dir / "out" / "curves.csv");
-  EXPECT_EQ(curves.header.size(), 15u);
+  EXPECT_EQ(curves.header.size(), 18u);
   // Header first, no comment lines: what wrote the tables and what the strain means is in run.json.
   EXPECT_EQ(slurp(dir / "out" / "curves.csv").rfind("time[s],step[1],strain[%],", 0), 0u);
   EXPECT_EQ(slurp(dir / "out" / "breaks.csv").rfind("step[1],time[s],strain[%],", 0), 0u);
@@ -120,6 +120,40 @@ TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
       << log;
   EXPECT_NE(log.find(fmt::format("{} broken, stopped: separated (end)", breaks.rows())), std::string::npos)
       << log;
+}
+
+// Each row's means (strain, top force, elastic energy) are those of the steps since the previous row:
+// at 20 steps a row every step is sampled, so a run writing a row every step gives them back. The
+// first row (step 0) holds the instant's values; every column is in its place in every row.
+TEST(RunCommand, RowMeansAreTheMeansOfTheStepsSinceThePreviousRow) {
+  TempDir dir;
+  const std::string run = "run '" + examples + "block.toml' --set stop.max_steps=400 -o ";
+  ASSERT_EQ(run_rupture(run + quoted(dir / "rows20") + " --set output.interval=20").exit_code, 0);
+  ASSERT_EQ(run_rupture(run + quoted(dir / "rows1") + " --set output.interval=1").exit_code, 0);
+  const auto rows20 = io::read_csv(dir / "rows20" / "curves.csv");
+  const auto every = io::read_csv(dir / "rows1" / "curves.csv");
+  ASSERT_EQ(rows20.rows(), 21u);
+  ASSERT_EQ(every.rows(), 401u);
+  const auto& step = every.column("step");
+  for (std::size_t r = 0; r < every.rows(); ++r) ASSERT_EQ(step[r], double(r));
+  const std::pair<const char*, const char*> pairs[] = {
+      {"strain_mean", "strain"}, {"force_top_mean", "force_top"}, {"elastic_energy_mean", "elastic_energy"}};
+  for (const auto& [mean, instant] : pairs) {
+    const auto& means = rows20.column(mean);
+    const auto& values = every.column(instant);
+    EXPECT_EQ(means[0], values[0]) << mean;
+    double largest = 0.0;
+    for (std::size_t row = 1; row < rows20.rows(); ++row) {
+      double sum = 0.0;
+      for (std::size_t k = 20 * (row - 1) + 1; k <= 20 * row; ++k) sum += values[k];
+      EXPECT_NEAR(means[row], sum / 20.0, 1e-12 * std::abs(sum)) << mean << " row " << row;
+      largest = std::max(largest, std::abs(values[20 * row] - sum / 20.0));
+    }
+    // The mean is not the row's own sample: the block is loaded, so the values change within a row.
+    EXPECT_GT(largest, 0.0) << mean;
+  }
+  // The row's single samples are unchanged by the means.
+  EXPECT_EQ(rows20.column("force_top")[20], every.column("force_top")[400]);
 }
 
 // One switch keeps a run going past separation: it stops at max_strain, with the separation still

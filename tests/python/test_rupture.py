@@ -189,8 +189,8 @@ def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
     expected = json.loads((study / "run" / "analysis.json").read_text())
     run = rupture.read_run(study / "run")
     for a in (rupture.analyze(run.curves), rupture.analyze(study / "run" / "curves.csv"),
-              rupture.analyze(run.curves["strain[%]"], run.curves["force_top[N]"],
-                              run.curves["elastic_energy[mJ]"])):
+              rupture.analyze(run.curves["strain_mean[%]"], run.curves["force_top_mean[N]"],
+                              run.curves["elastic_energy_mean[mJ]"])):
         for key in ("x_p", "x_c", "x_m", "A_r"):
             assert getattr(a, key).value == pytest.approx(expected[key]["value"], rel=1e-12), key
             assert getattr(a, key).unit == expected[key]["unit"]

@@ -87,7 +87,8 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
             replicates=0, seed=1, walk_profile=True):
     """Analyses a curve given as
       - a DataFrame with columns strain, force (or force_top) and elastic_energy, units taken from
-        names like strain[%] (e.g. Run.curves, read_curves()),
+        names like strain[%] (e.g. Run.curves, read_curves()); a run's strain_mean, force_top_mean and
+        elastic_energy_mean (means over each row's interval) where it has all three,
       - the path of a curves CSV (its breaks.csv beside it, if any, is read as the CLI does), or
       - three arrays: analyze(strain, force, energy, units=("%", "N", "mJ")).
     delay_method: "fitted-maxima" (default) or "shift-l1" (the paper's inversion, for comparison);
@@ -100,7 +101,13 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
                                               bool(walk_profile)))
     if force is None and hasattr(data, "columns"):
         frame = data
-        columns = [_column(frame, "strain"), _column(frame, "force", ("force_top",)), _column(frame, "elastic_energy")]
+        means = ("strain_mean", "force_top_mean", "elastic_energy_mean")
+        if all(any(c.split("[")[0] == m for c in frame.columns) for m in means):
+            # A run's rows averaged over their interval, as rupture analyze reads them (find_curve_columns).
+            columns = [_column(frame, m) for m in means]
+        else:
+            columns = [_column(frame, "strain"), _column(frame, "force", ("force_top",)),
+                       _column(frame, "elastic_energy")]
         found = frame.attrs.get("units", {})
         units = tuple(found.get(c, "1") for c in columns)
         strain, force, energy = (frame[c].to_numpy(dtype=float) for c in columns)

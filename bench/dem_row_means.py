@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Single samples against means over the row's interval, on one DEM run (docs/analysis.md, "Where the
+rows fall").
+
+Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10]
+
+DENSE_CURVES is a curves.csv written with a row every BASE_STEPS steps (`rupture run CONFIG --set
+output.interval=10`). From it, for rows every 100, 200 and 400 steps, five curves are built that start
+at five different steps (offsets spread over one spacing): once keeping each spacing's single rows
+("sample", what a run writes with that output.interval as a snapshot) and once averaging the dense
+rows over each spacing ("mean", what rupture run writes in its *_mean columns). Each is analysed with
+default options. Printed per spacing and kind: δ_x (sd) for each start and their sd over the starts.
+The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
+samples. Standard library only.
+"""
+import json
+import pathlib
+import statistics
+import subprocess
+import sys
+import tempfile
+
+
+def main(argv):
+    if len(argv) < 3:
+        sys.exit(__doc__)
+    rupture, dense = argv[1], pathlib.Path(argv[2])
+    base = int(argv[3]) if len(argv) > 3 else 10
+    lines = [line for line in dense.read_text().splitlines() if line and not line.startswith("#")]
+    names = lines[0].split(",")
+    keep = [i for i, name in enumerate(names) if "_mean[" not in name]
+    header = ",".join(names[i] for i in keep)
+    rows = [[float(v) for i, v in enumerate(line.split(",")) if i in keep] for line in lines[1:]]
+    with tempfile.TemporaryDirectory() as tmp:
+        curve, out = pathlib.Path(tmp) / "curve.csv", pathlib.Path(tmp) / "analysis.json"
+
+        def analyse(built):
+            curve.write_text("\n".join([header] + [",".join(repr(v) for v in row) for row in built]) + "\n")
+            subprocess.run([rupture, "analyze", str(curve), "-o", str(out)], capture_output=True)
+            delta = json.loads(out.read_text()).get("delta_x") or {} if out.exists() else {}
+            return (delta["value"], delta["sd"]) if "value" in delta else None
+
+        print("| rows every (steps) | kind | δ_x (sd) [%] at five starts | sd over the starts [%] |")
+        print("|---|---|---|---|")
+        for spacing in (100, 200, 400):
+            k = spacing // base
+            for kind in ("sample", "mean"):
+                found = []
+                for start in range(0, k, max(1, k // 5)):
+                    if kind == "sample":
+                        built = [rows[0]] + rows[1 + start::k]
+                    else:
+                        built = [rows[0]] + [[sum(c) / k for c in zip(*rows[i:i + k])]
+                                             for i in range(1 + start, len(rows) - k + 1, k)]
+                    found.append(analyse(built))
+                values = [f[0] for f in found if f]
+                cells = ", ".join("%.4f (%.4f)" % f if f else "-" for f in found)
+                spread = "%.4f" % statistics.stdev(values) if len(values) > 1 else "-"
+                print(f"| {spacing} | {kind} | {cells} | {spread} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
