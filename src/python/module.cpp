@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "analysis/analysis.hpp"
@@ -25,6 +26,7 @@
 #include "fbm/distribution.hpp"
 #include "fbm/els_theory.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "loading/config.hpp"
 #include "loading/run.hpp"
 #include "rupture/version.hpp"
@@ -369,6 +371,16 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   return to_python(document);
 }
 
+// The columns (strain, force, energy) rupture analyze reads from a table with this header
+// (analysis::find_curve_columns): a DataFrame is read as its file would be.
+std::tuple<std::size_t, std::size_t, std::size_t> columns_read(const std::vector<std::string>& header) {
+  io::CsvTable table;
+  table.source = "analyze: the DataFrame";
+  table.header = header;
+  const auto columns = analysis::find_curve_columns(table);
+  return {columns.strain, columns.force, columns.energy};
+}
+
 py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method,
                       std::size_t replicates, std::uint64_t seed, bool walk_profile) {
   analysis::CurveFileInputs inputs;
@@ -473,6 +485,7 @@ PYBIND11_MODULE(_rupture, m) {
   m.def("analyze_arrays", &analyze_arrays, py::arg("strain"), py::arg("force"), py::arg("energy"),
         py::arg("strain_unit"), py::arg("force_unit"), py::arg("energy_unit"), py::arg("delay_method"),
         py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"));
+  m.def("columns_read", &columns_read, py::arg("header"));
   m.def("analyze_file", &analyze_file, py::arg("curves"), py::arg("delay_method"), py::arg("replicates"),
         py::arg("seed"), py::arg("walk_profile"));
 }

@@ -204,6 +204,17 @@ def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
     assert rupture.analyze(study / "run" / "curves.csv").mechanism == expected["mechanism"]["class"]
 
 
+def test_a_dataframe_is_read_by_the_columns_rupture_analyze_picks():
+    # rupture analyze's choice (find_curve_columns): a run's means as a set, else strain/force/energy.
+    header = ["time[s]", "strain[%]", "force_top[N]", "elastic_energy[mJ]", "strain_mean[%]",
+              "force_top_mean[N]", "elastic_energy_mean[mJ]"]
+    import pandas as pd
+    assert rupture._rupture.columns_read(header) == (4, 5, 6)
+    assert rupture._rupture.columns_read(header[:5]) == (1, 2, 3)
+    with pytest.raises(rupture.InputError, match="no column 'strain'"):
+        rupture.analyze(pd.DataFrame({"force": [0.0, 1.0], "elastic_energy": [0.0, 1.0]}))
+
+
 def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):
     curve = tmp_path / "bundle.csv"
     cli("fbm", "simulate", "--dist", "uniform", "--fibers", "100000", "--seed", "7", "--out", curve)

@@ -74,15 +74,6 @@ class Analysis:
                 f"accepted={self.accepted}, mechanism={self.mechanism!r})")
 
 
-def _column(frame, name, fallbacks=()):
-    for wanted in (name, *fallbacks):
-        for column in frame.columns:
-            if column == wanted or column.split("[")[0] == wanted:
-                return column
-    raise _rupture.InputError(f"analyze: no column '{name}' among {list(frame.columns)}; "
-                              "name the columns strain, force and elastic_energy, or pass arrays")
-
-
 def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_method="fitted-maxima",
             replicates=0, seed=1, walk_profile=True):
     """Analyses a curve given as
@@ -101,13 +92,8 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
                                               bool(walk_profile)))
     if force is None and hasattr(data, "columns"):
         frame = data
-        means = ("strain_mean", "force_top_mean", "elastic_energy_mean")
-        if all(any(c.split("[")[0] == m for c in frame.columns) for m in means):
-            # A run's rows averaged over their interval, as rupture analyze reads them (find_curve_columns).
-            columns = [_column(frame, m) for m in means]
-        else:
-            columns = [_column(frame, "strain"), _column(frame, "force", ("force_top",)),
-                       _column(frame, "elastic_energy")]
+        names = [str(c) for c in frame.columns]
+        columns = [names[i] for i in _rupture.columns_read(names)]  # as rupture analyze picks them
         found = frame.attrs.get("units", {})
         units = tuple(found.get(c, "1") for c in columns)
         strain, force, energy = (frame[c].to_numpy(dtype=float) for c in columns)
