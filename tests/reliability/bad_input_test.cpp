@@ -360,12 +360,12 @@ TEST(BadCheckpoint, EachDamageIsNamedWithTheFieldAndTheFix) {
   std::string flipped = good, foreign = good, future = good;
   flipped[good.size() / 2] ^= 0x01;
   foreign[0] = 'X';
-  future[8] = 3;  // the format version (u32, little-endian) follows the 8-byte magic
+  future[8] = char(loading::checkpoint_format_version + 1);  // the u32 version follows the 8-byte magic
   const std::vector<BadCheckpoint> cases = {
       {"empty", "", "step.ckpt: header: 0 bytes is too short for a checkpoint (truncated?); "},
       {"not a checkpoint", foreign, "step.ckpt: magic: not a rupture checkpoint; "},
       {"newer format", future,
-       "step.ckpt: version: format version 3 is not one this rupture reads (1 to 2); "},
+       "step.ckpt: version: format version 4 is not one this rupture reads (1 to 3); "},
       {"truncated", good.substr(0, good.size() - 100), "step.ckpt: payload_size: says "},
       {"one bit flipped", flipped, "step.ckpt: checksum: is "},
   };
