@@ -9,7 +9,8 @@ output.interval=10`). From it, for rows every 100, 200 and 400 steps, five curve
 at five different steps (offsets spread over one spacing): once keeping each spacing's single rows
 ("sample", what a run writes with that output.interval as a snapshot) and once averaging the dense
 rows over each spacing ("mean", what rupture run writes in its *_mean columns). Each is analysed with
-default options. Printed per spacing and kind: δ_x (sd) for each start and their sd over the starts.
+default options. Printed per spacing and kind: δ_x (sd) for each start ("rejected" where the analysis
+rejects the curve, "-" where it finds no δ_x) and their sd over the accepted starts.
 The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
 samples. Standard library only.
 """
@@ -37,8 +38,9 @@ def main(argv):
         def analyse(built):
             curve.write_text("\n".join([header] + [",".join(repr(v) for v in row) for row in built]) + "\n")
             subprocess.run([rupture, "analyze", str(curve), "-o", str(out)], capture_output=True)
-            delta = json.loads(out.read_text()).get("delta_x") or {} if out.exists() else {}
-            return (delta["value"], delta["sd"]) if "value" in delta else None
+            result = json.loads(out.read_text()) if out.exists() else {}
+            delta = result.get("delta_x") or {}
+            return (delta["value"], delta["sd"], bool(result.get("accepted"))) if "value" in delta else None
 
         print("| rows every (steps) | kind | δ_x (sd) [%] at five starts | sd over the starts [%] |")
         print("|---|---|---|---|")
@@ -53,8 +55,9 @@ def main(argv):
                         built = [rows[0]] + [[sum(c) / k for c in zip(*rows[i:i + k])]
                                              for i in range(1 + start, len(rows) - k + 1, k)]
                     found.append(analyse(built))
-                values = [f[0] for f in found if f]
-                cells = ", ".join("%.4f (%.4f)" % f if f else "-" for f in found)
+                values = [f[0] for f in found if f and f[2]]
+                cells = ", ".join(("%.4f (%.4f)" % f[:2]) + ("" if f[2] else " rejected") if f else "-"
+                                  for f in found)
                 spread = "%.4f" % statistics.stdev(values) if len(values) > 1 else "-"
                 print(f"| {spacing} | {kind} | {cells} | {spread} |")
     return 0

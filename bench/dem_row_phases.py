@@ -7,8 +7,8 @@ Each RUN_DIR holds a curves.csv written by `rupture run` (bench/dem_delta_spread
 The curve's rows are split into k interleaved phases (every k-th row, starting at row 0 .. k-1; the
 comment lines kept), for k = 2 and 4, and each phase is analysed with default options, as is the
 whole curve. Printed per run: the whole curve's δ_x and its reported sd, then each thinning's δ_x per
-phase, their sd (over the phases) and the mean of the sds the phases report. A phase whose analysis
-fails or rejects prints '-'. The thinned curves are what the same run would have written with rows
+phase ("rejected" where the analysis rejects the phase, "-" where it finds no δ_x), their sd over the
+accepted phases and the mean of the sds those report. The thinned curves are what the same run would have written with rows
 k times as far apart, at k different starting steps: the same physics, other samples of it.
 Standard library only.
 """
@@ -59,8 +59,9 @@ def main(argv):
                     curve = tmp / ("phase%d.csv" % phase)
                     curve.write_text("\n".join(comments + [header] + rows[phase::k]) + "\n")
                     phases.append(analyse(rupture, curve, tmp / "phase.json"))
-                found = [p for p in phases if p]
-                cells.append(", ".join("%.4f" % p["delta_x"] if p else "-" for p in phases))
+                found = [p for p in phases if p and p["accepted"]]
+                cells.append(", ".join(("%.4f" % p["delta_x"]) + ("" if p["accepted"] else " rejected") if p else "-"
+                                       for p in phases))
                 cells.append("%.4f" % statistics.stdev(p["delta_x"] for p in found) if len(found) > 1 else "-")
                 cells.append("%.4f" % statistics.fmean(p["sd"] for p in found) if found else "-")
             print("| " + " | ".join(cells) + " |")

@@ -65,7 +65,7 @@ const std::vector<std::string> curve_header = {"time[s]",
 // Samples each row's means are taken from: every output.interval / row_mean_samples steps (at least
 // every step) since the previous row. Twenty per row are enough: on the default study's run, rows
 // every 200 and 400 steps averaged so over their interval give δ_x the same to 0.004 and 0.0006 %
-// whichever step they start at, where single samples move it by 0.024 and 0.011 % (docs/analysis.md,
+// whichever step they start at, where single samples move it by 0.031 and 0.011 % (docs/analysis.md,
 // "Where the rows fall").
 constexpr std::int64_t row_mean_samples = 20;
 // What curves.csv's and breaks.csv's columns mean beyond their names and units (run.json "columns").
