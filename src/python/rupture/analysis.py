@@ -93,7 +93,11 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     if force is None and hasattr(data, "columns"):
         frame = data
         names = [str(c) for c in frame.columns]
-        columns = [names[i] for i in _rupture.columns_read(names)]  # as rupture analyze picks them
+        try:
+            columns = [names[i] for i in _rupture.columns_read(names)]  # as rupture analyze picks them
+        except _rupture.InputError as e:  # its fix names the command line's options; say Python's
+            raise _rupture.InputError(f"{e}; from Python: name the DataFrame's columns strain, force (or "
+                                      "force_top) and elastic_energy, or pass three arrays") from None
         found = frame.attrs.get("units", {})
         units = tuple(found.get(c, "1") for c in columns)
         strain, force, energy = (frame[c].to_numpy(dtype=float) for c in columns)
