@@ -7,7 +7,8 @@
 // [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between|brittle: the noise
 // groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do; white-between:
 // white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and 0.14 %; brittle:
-// curves cut by a sharp collapse at 1.03-1.5 x_c, calibration_set.hpp]
+// curves cut by a sharp collapse at 1.03-1.5 x_c; run-like: bundles recorded as rupture run records a
+// tissue, F ringing, rows as single samples or means over their interval; calibration_set.hpp]
 // [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
 // stationary-walk: one step along the curve]. The per-curve file holds each curve's truth, estimates,
 // intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
@@ -53,10 +54,10 @@ int main(int argc, char** argv) {
   }
   if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed" &&
       kinds != "white-between" && kinds != "white-low" && kinds != "white-low-between" &&
-      kinds != "brittle") {
+      kinds != "brittle" && kinds != "run-like") {
     std::fprintf(stderr,
                  "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed, "
-                 "white-between, white-low, white-low-between or brittle\n",
+                 "white-between, white-low, white-low-between, brittle or run-like\n",
                  kinds.c_str());
     return 2;
   }
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
                       : kinds == "white-low"         ? low_noise_groups()
                       : kinds == "white-low-between" ? low_between_noise_groups()
                       : kinds == "brittle"           ? brittle_noise_groups()
+                      : kinds == "run-like"          ? run_like_noise_groups()
                                                      : noise_groups();
   for (const auto& g : groups) {
     if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
@@ -97,9 +99,9 @@ int main(int argc, char** argv) {
     for (int k = 0; k < per_group; ++k) {
       const auto curve_case = CalibrationCase::at(chosen, k);
       const Shape& s = curve_case.shape;
-      const std::size_t rows = curve_case.rows;
       const auto seed = curve_case.seed;
       const Curve c = curve_case.draw(g);
+      const std::size_t rows = c.strain.size();
       const Truth t = truth(s);
       const auto r = analyze_curve(c, unscaled);
       if (per_curve.is_open()) {
@@ -126,6 +128,7 @@ int main(int argc, char** argv) {
         }
         per_curve << ',' << noise_name(reads_random_walk(r)) << ',';
         if (g.collapse) per_curve << collapse_cut(s, seed);
+        if (g.run.collapse) per_curve << run_like_cut(s, seed);
         per_curve << ',';
         if (r.collapse_onset) per_curve << *r.collapse_onset;
         per_curve << '\n' << std::flush;

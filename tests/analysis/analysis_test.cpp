@@ -754,6 +754,55 @@ TEST(CalibrationSets, ABrittleCurveFollowsTheShapeToItsCutAndThenFalls) {
   EXPECT_NEAR(std::sqrt(square / static_cast<double>(after)), 0.01 * truth(s).F_c, 0.003 * truth(s).F_c);
 }
 
+// The run-like groups' curves (calibration_set.hpp): rows on the run's step lattice, each the step's
+// values or the means of 20 samples over the row's interval; F rings at the level asked for over
+// [0.7, 0.95] x_c about the bundle's own force; a sample that comes apart falls towards 7 % of F and
+// 30 % of E_e at its cut.
+TEST(CalibrationSets, ARunLikeCurveHasTheRunsRowsItsRingingAndItsCollapse) {
+  using namespace calibration;
+  const Shape s = weibull(3);
+  const Truth t = truth(s);
+  constexpr std::uint64_t seed = 7;
+  constexpr double run_steps = 100000.0;
+  const Curve samples = run_like_curve(s, 10000, {200, false, 0.008, false}, seed);
+  const Curve means = run_like_curve(s, 10000, {200, true, 0.008, false}, seed);
+  ASSERT_EQ(samples.strain.size(), 501u);
+  ASSERT_EQ(means.strain.size(), 501u);
+  for (std::size_t i = 1; i < samples.strain.size(); ++i) {
+    const double row_end = 200.0 * static_cast<double>(i);
+    ASSERT_NEAR(samples.strain[i], s.x_end * row_end / run_steps, 1e-12) << i;
+    ASSERT_NEAR(means.strain[i], s.x_end * (row_end - 95.0) / run_steps, 1e-12) << i;  // steps 10, 20 ... 200 back
+  }
+  // Every step against the same fibres' bundle at the same strains: E_e the bundle's, F its own plus
+  // the ringing, whose rms over [0.7, 0.95] x_c is the level asked for.
+  const Curve every_step = run_like_curve(s, 10000, {1, false, 0.008, false}, seed);
+  const Curve bundle = finite_bundle_curve(s, every_step.strain.size(), 10000, seed);
+  ASSERT_EQ(every_step.strain.size(), 100001u);
+  double square = 0.0;
+  std::size_t ringing = 0;
+  for (std::size_t i = 0; i < every_step.strain.size(); ++i) {
+    ASSERT_EQ(every_step.energy[i], bundle.energy[i]) << "E_e carries the bundle's walk alone";
+    if (every_step.strain[i] < 0.7 * t.x_c || every_step.strain[i] > 0.95 * t.x_c) continue;
+    square += std::pow(every_step.force[i] - bundle.force[i], 2);
+    ++ringing;
+  }
+  EXPECT_NEAR(std::sqrt(square / static_cast<double>(ringing)), 0.008 * t.F_c, 1e-9 * t.F_c);
+
+  const Curve apart = run_like_curve(s, 10000, {200, false, 0.008, true}, seed);
+  const double cut = run_like_cut(s, seed);
+  EXPECT_GE(cut, 1.03 * t.x_c);
+  EXPECT_LE(cut, 1.2 * t.x_c);
+  std::size_t last_before = 0;
+  while (apart.strain[last_before + 1] < cut) ++last_before;
+  EXPECT_EQ(apart.energy[last_before], samples.energy[last_before]) << "the same curve up to the cut";
+  const double held_energy = apart.energy.back() / 0.3;  // E_e's value at the cut's step before, from its floor
+  EXPECT_GT(held_energy, 0.9 * apart.energy[last_before]);
+  EXPECT_LT(held_energy, 1.1 * apart.energy[last_before]);
+  double tail = 0.0;
+  for (std::size_t i = apart.force.size() - 100; i < apart.force.size(); ++i) tail += apart.force[i] / 100.0;
+  EXPECT_NEAR(tail, 0.07 * apart.force[last_before], 0.02 * t.F_c) << "F falls to 7 % and rings about it";
+}
+
 // The sets bench/analysis_calibration runs by name: every held-out row has its six shapes, a name
 // gives all its rows, and no shape is shared with the tuning set or another row (a held-out set that
 // repeats a shape checks nothing new); an unknown name gives no set. One repeat is on record:
