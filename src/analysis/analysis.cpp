@@ -298,7 +298,7 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   fit_force();
   std::optional<std::size_t> onset;
   if (m.force.found && search.collapse_width > 0)
-    onset = sharp_collapse_onset(force, m.force.index, search.collapse_fraction * m.force.value,
+    onset = sharp_collapse_onset(force, energy, m.force.index, search.collapse_fraction * m.force.value,
                                  search.collapse_width);
   if (!onset) onset = search.collapse_onset;
   m.collapse_onset = onset;
@@ -655,8 +655,8 @@ std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettin
   const std::size_t warnings = r.warnings.size();
   choose_filter(g, filter, smoothing_share, r);
   const ForceTop top = filtered_force_top(g.force(), filter);
-  const auto onset = sharp_collapse_onset(g.force(), top.index, collapse_fraction * top.value,
-                                          collapse_width(top.index, filter));
+  const auto onset = sharp_collapse_onset(g.force(), g.energy(), top.index, collapse_fraction * top.value,
+                                          collapse_width(top.index));
   if (!onset || *onset + 1 < minimum_samples(filter) || !chooses_own_strength(requested)) return onset;
   Grid loading = g;
   for (auto& y : loading.curves.y) y.resize(*onset + 1);
@@ -954,7 +954,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
       .peak = options.peak,
       .collapse_fraction = options.acceptance.collapse_fraction,
-      .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index, r.filter),
+      .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
       .collapse_onset = onset,
       .past_filter_edge = true};
   r.derivative_window = search.derivative_window;

@@ -5,8 +5,9 @@
 
 namespace rupture::analysis {
 
-std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::size_t force_top,
-                                                double collapse_level, std::size_t width) {
+std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::span<const double> energy,
+                                                std::size_t force_top, double collapse_level,
+                                                std::size_t width) {
   std::size_t fallen = force_top + 1;
   while (fallen < force.size() && force[fallen] >= collapse_level) ++fallen;
   if (fallen >= force.size() || width == 0) return std::nullopt;
@@ -14,13 +15,18 @@ std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, s
   if (force[start] < 2.0 * collapse_level) return std::nullopt;
   std::size_t onset = fallen - 1;
   while (force[onset] < 2.0 * collapse_level) --onset;
-  while (onset > start && force[onset - 1] > force[onset]) --onset;
+  // A step counts as falling when it drops by more than the curve's noise: a noisy flat top would
+  // otherwise carry the walk back by chance, a row at a time.
+  const auto walk_back = [&](std::span<const double> y) {
+    const double noise = noise_from_differences(y);
+    while (onset > force_top + 1 && y[onset - 1] - y[onset] > noise) --onset;
+  };
+  walk_back(force);
+  walk_back(energy);
   return onset;
 }
 
-std::size_t collapse_width(std::size_t force_top, const FilterSettings& filter) {
-  return std::min(2 * edge_samples(filter), force_top / 20);
-}
+std::size_t collapse_width(std::size_t force_top) { return force_top / 20; }
 
 void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
                         std::vector<double>& filtered) {

@@ -1,6 +1,6 @@
-// analysis/collapse: a record that ends in a collapse too sharp for the filter (a brittle sample
-// coming apart within a few rows): where the drop begins, how wide a drop counts, and the filtering
-// of the loading and the collapse each on its own. Not: choosing the filter or finding the maxima
+// analysis/collapse: a record that ends in a collapse (a brittle sample coming apart within a
+// twentieth of its rise): where the drop begins, how wide a drop counts, and the filtering of the
+// loading and the collapse each on its own. Not: choosing the filter or finding the maxima
 // (analysis.cpp). docs/analysis.md, "A collapse the filter cannot follow" and "The loading's cut end".
 #pragma once
 
@@ -13,22 +13,27 @@
 
 namespace rupture::analysis {
 
-// A collapse sharper than the filter can follow: after the force peak the raw force falls from
-// above twice `collapse_level` to below it within `width` samples (collapse_width). A low-pass spreads
-// such a drop backwards with an overshoot: ℰ, the derivative, then peaks on the filter's response
-// just before the collapse, above any slope the rows hold, and F's peak is lifted there too
-// (known-answer Weibull curves cut at 1.05-1.35 x_c: x_p found at the cut where it is 0.49;
-// docs/analysis.md, "A collapse the filter cannot follow"). The onset is where the drop begins: from
-// the last sample above twice the level, back while the raw force still falls. Nothing where the
-// collapse is gradual or absent.
-std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::size_t force_top,
-                                                double collapse_level, std::size_t width);
+// A collapse: after the force peak the raw force falls from above twice `collapse_level` to below it
+// within `width` samples (collapse_width). A low-pass spreads such a drop backwards with an
+// overshoot: ℰ, the derivative, then peaks on the filter's response just before the collapse, above
+// any slope the rows hold, and F's peak is lifted there too (known-answer Weibull curves cut at
+// 1.05-1.35 x_c: x_p found at the cut where it is 0.49; docs/analysis.md, "A collapse the filter
+// cannot follow"). The onset is where the drop begins: from the last sample above twice the level,
+// back while the raw force still falls and then while the raw E_e still falls (each step by more
+// than the curve's noise, noise_from_differences), never past the force peak. F rings on a run and can stop
+// the first walk a few rows into the drop; E_e, which does not, then takes it to where the sample began to
+// come apart (docs/analysis.md, "Known answers that ring as a run does"). Nothing where the collapse is
+// gradual or absent.
+std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::span<const double> energy,
+                                                std::size_t force_top, double collapse_level,
+                                                std::size_t width);
 
-// The widest drop (samples) taken for a collapse: one period of the filter's cutoff (a slower one
-// the filter follows) and a twentieth of the rise to the force peak (a slower one is the curve's own
-// decline: a finite bundle recorded far past its peak falls gradually, and its strong filter's
-// period can span that fall).
-std::size_t collapse_width(std::size_t force_top, const FilterSettings& filter);
+// The widest drop (samples) taken for a collapse: a twentieth of the rise to the force peak (a slower
+// one is the curve's own decline: a finite bundle recorded far past its peak falls gradually). It no
+// longer depends on the filter: a weak filter (a run's rows every 100 steps, whose ringing reads as
+// white noise) made a drop over ten rows one "the filter follows", and then nothing kept ℰ's search
+// off its corner (docs/analysis.md, "Known answers that ring as a run does").
+std::size_t collapse_width(std::size_t force_top);
 
 // The loading and the collapse filtered each on its own, split at the onset, so that the drop's
 // response does not reach back into the loading. The loading's cut end is continued by its trend

@@ -358,7 +358,8 @@ inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& r
   const double decay = std::exp(-omega / (2.0 * quality)), pull = 2.0 * decay * std::cos(omega);
   const auto t = truth(s);
   const double cut = rows.collapse ? run_like_cut(s, seed) : 2.0 * s.x_end;
-  std::vector<double> x(steps + 1), force(steps + 1), energy(steps + 1), ring(steps + 1, 0.0), after(steps + 1, 0.0);
+  std::vector<double> x(steps + 1), force(steps + 1), energy(steps + 1), ring(steps + 1, 0.0),
+      after(steps + 1, 0.0);
   std::size_t broken = 0, cut_step = 0;
   double ring_squares = 0.0, after_squares = 0.0;
   std::size_t ring_samples = 0;
@@ -391,9 +392,11 @@ inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& r
   }
   // The pieces ring at 5 times the loading's level (the study's run: F's sd 3-4 % of F_c after it came
   // apart against 0.3-0.6 % before).
-  const double scale = ring_squares > 0.0 ? rows.ring * t.F_c / std::sqrt(ring_squares / double(ring_samples)) : 0.0;
+  const double scale =
+      ring_squares > 0.0 ? rows.ring * t.F_c / std::sqrt(ring_squares / double(ring_samples)) : 0.0;
   const double after_scale =
-      after_squares > 0.0 ? 5.0 * rows.ring * t.F_c / std::sqrt(after_squares / double(steps + 1 - cut_step)) : 0.0;
+      after_squares > 0.0 ? 5.0 * rows.ring * t.F_c / std::sqrt(after_squares / double(steps + 1 - cut_step))
+                          : 0.0;
   for (std::size_t k = 0; k <= steps; ++k) force[k] += scale * ring[k] + after_scale * after[k];
   Curve c;
   c.source = s.name + " run-like";
