@@ -14,16 +14,15 @@
 namespace rupture::analysis {
 
 // A collapse: after the force peak the raw force falls from above twice `collapse_level` to below it
-// within `width` samples (collapse_width). A low-pass spreads such a drop backwards with an
-// overshoot: ℰ, the derivative, then peaks on the filter's response just before the collapse, above
-// any slope the rows hold, and F's peak is lifted there too (known-answer Weibull curves cut at
-// 1.05-1.35 x_c: x_p found at the cut where it is 0.49; docs/analysis.md, "A collapse the filter
-// cannot follow"). The onset is where the drop begins: from the last sample above twice the level,
-// back while the raw force still falls and then while the raw E_e still falls (each step by more
-// than the curve's noise, noise_from_differences), never past the force peak. F rings on a run and can stop
-// the first walk a few rows into the drop; E_e, which does not, then takes it to where the sample began to
-// come apart (docs/analysis.md, "Known answers that ring as a run does"). Nothing where the collapse is
-// gradual or absent.
+// within `width` samples (collapse_width). A low-pass spreads such a drop backwards with an overshoot: ℰ,
+// the derivative, then peaks on the filter's response just before the collapse, above any slope the rows
+// hold, and F's peak is lifted there too (known-answer Weibull curves cut at 1.05-1.35 x_c: x_p found at
+// the cut where it is 0.49; docs/analysis.md, "A collapse the filter cannot follow"). The onset is where
+// the drop begins: from the last sample above twice the level, back while the raw force still falls and
+// then while the raw E_e still falls (each step by more than the curve's noise, noise_from_differences),
+// never past the force peak. F rings on a run and can stop the first walk a few rows into the drop; E_e,
+// which does not, then takes it to where the sample began to come apart (docs/analysis.md, "Known answers
+// that ring as a run does"). Nothing where the collapse is gradual or absent.
 std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, std::span<const double> energy,
                                                 std::size_t force_top, double collapse_level,
                                                 std::size_t width);

@@ -335,34 +335,44 @@ struct RunRows {
   bool collapse = false;  // the sample comes apart at 1.03-1.2 x_c (drawn per curve)
 };
 
-// A bundle recorded as `rupture run` records a tissue (docs/analysis.md, "Known answers that ring as
-// a run does"): the strain x_end reached in 100,000 steps; F rings as the tissue does once bonds break,
-// a damped oscillator of period P steps (drawn in [250, 450]; the reduced tissue's is about 330 at the
-// study's dt) and quality 10, kicked by every break with a normal impulse, scaled so that its rms over
-// [0.7, 0.95] x_c is `rows.ring` F_c (0.26-0.60 % on five seeds of the study's run); E_e carries the
-// bundle's own walk. With `rows.collapse` the sample comes apart at b x_c, b drawn in [1.03, 1.2] (the
-// study's five seeds: 1.07-1.10): every fibre left breaks in that step, F and E_e fall by e every 1,000
-// steps towards 7 % and 30 % of their values there, and the pieces ring on at 5 times the loading's
-// level. A row every `rows.every` steps from step 0, each the step's values or, with `rows.means`, the
-// means of 20 samples over the row's interval as rupture run takes them (the first row: the instant).
+// Where run_like_curve's sample comes apart: b x_c, b drawn in [1.03, 1.2].
 inline double run_like_cut(const Shape& s, std::uint64_t seed) {
   Rng rng(seed, RandomStream::analysis_noise, 12);
   return rng.uniform(1.03, 1.2) * truth(s).x_c;
 }
-inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& rows, std::uint64_t seed) {
+
+// The tissue's lowest mode as a damped oscillator sampled once a step (period `period` steps, quality
+// 10): out[k] from the two before it and the step's drive.
+struct StepOscillator {
+  double pull, damping;
+  explicit StepOscillator(double period) {
+    constexpr double pi = 3.14159265358979323846, quality = 10.0;
+    const double omega = 2.0 * pi / period, decay = std::exp(-omega / (2.0 * quality));
+    pull = 2.0 * decay * std::cos(omega);
+    damping = decay * decay;
+  }
+  void step(std::vector<double>& out, std::size_t k, double drive) const {
+    out[k] = pull * out[k - 1] - damping * out[k - 2] + drive;
+  }
+};
+
+// run_like_curve's every step (100,000 of them): strain, F with its ringing, E_e.
+inline Curve run_like_steps(const Shape& s, std::size_t fibers, const RunRows& rows, std::uint64_t seed) {
   constexpr std::size_t steps = 100000, collapse_steps = 1000;
-  constexpr double pi = 3.14159265358979323846, quality = 10.0;
   const auto thresholds = bundle_thresholds(s, fibers, seed);
   Rng rng(seed, RandomStream::analysis_noise, 11);
-  const double omega = 2.0 * pi / rng.uniform(250.0, 450.0);
-  const double decay = std::exp(-omega / (2.0 * quality)), pull = 2.0 * decay * std::cos(omega);
+  const StepOscillator mode(rng.uniform(250.0, 450.0));
   const auto t = truth(s);
   const double cut = rows.collapse ? run_like_cut(s, seed) : 2.0 * s.x_end;
-  std::vector<double> x(steps + 1), force(steps + 1), energy(steps + 1), ring(steps + 1, 0.0),
-      after(steps + 1, 0.0);
-  std::size_t broken = 0, cut_step = 0;
+  Curve c;
+  c.strain_unit = c.force_unit = c.energy_unit = "1";
+  auto &x = c.strain, &force = c.force, &energy = c.energy;
+  x.resize(steps + 1);
+  force.resize(steps + 1);
+  energy.resize(steps + 1);
+  std::vector<double> ring(steps + 1, 0.0), after(steps + 1, 0.0);
+  std::size_t broken = 0, cut_step = 0, ring_samples = 0;
   double ring_squares = 0.0, after_squares = 0.0;
-  std::size_t ring_samples = 0;
   for (std::size_t k = 0; k <= steps; ++k) {
     x[k] = s.x_end * static_cast<double>(k) / static_cast<double>(steps);
     double kick = 0.0;
@@ -381,10 +391,10 @@ inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& r
       const double fall = std::exp(-static_cast<double>(k + 1 - cut_step) / double(collapse_steps));
       force[k] = force[cut_step - 1] * (0.07 + 0.93 * fall);
       energy[k] = energy[cut_step - 1] * (0.3 + 0.7 * fall);
-      if (k >= cut_step + 2) after[k] = pull * after[k - 1] - decay * decay * after[k - 2] + rng.normal();
+      if (k >= cut_step + 2) mode.step(after, k, rng.normal());
       after_squares += after[k] * after[k];
     }
-    if (k >= 2) ring[k] = pull * ring[k - 1] - decay * decay * ring[k - 2] + kick;
+    if (k >= 2) mode.step(ring, k, kick);
     if (x[k] >= 0.7 * t.x_c && x[k] <= 0.95 * t.x_c) {
       ring_squares += ring[k] * ring[k];
       ++ring_samples;
@@ -398,27 +408,37 @@ inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& r
       after_squares > 0.0 ? 5.0 * rows.ring * t.F_c / std::sqrt(after_squares / double(steps + 1 - cut_step))
                           : 0.0;
   for (std::size_t k = 0; k <= steps; ++k) force[k] += scale * ring[k] + after_scale * after[k];
+  return c;
+}
+
+// A bundle recorded as `rupture run` records a tissue (docs/analysis.md, "Known answers that ring as
+// a run does"): the strain x_end reached in 100,000 steps; F rings as the tissue does once bonds break,
+// a damped oscillator of period P steps (drawn in [250, 450]; the reduced tissue's is about 330 at the
+// study's dt) and quality 10, kicked by every break with a normal impulse, scaled so that its rms over
+// [0.7, 0.95] x_c is `rows.ring` F_c (0.26-0.60 % on five seeds of the study's run); E_e carries the
+// bundle's own walk. With `rows.collapse` the sample comes apart at b x_c, b drawn in [1.03, 1.2] (the
+// study's five seeds: 1.07-1.10): every fibre left breaks in that step, F and E_e fall by e every 1,000
+// steps towards 7 % and 30 % of their values there, and the pieces ring on at 5 times the loading's
+// level. A row every `rows.every` steps from step 0, each the step's values or, with `rows.means`, the
+// means of 20 samples over the row's interval as rupture run takes them (the first row: the instant).
+inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& rows, std::uint64_t seed) {
+  const Curve steps = run_like_steps(s, fibers, rows, seed);
+  const std::size_t stride = std::max<std::size_t>(1, rows.every / 20);
+  // A row ending at step `end`: that step's value, or the mean of the samples since the row before.
+  const auto row = [&](const std::vector<double>& y, std::size_t end) {
+    if (!rows.means || end == 0) return y[end];
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t k = end - rows.every + stride; k <= end; k += stride, ++n) sum += y[k];
+    return sum / double(n);
+  };
   Curve c;
   c.source = s.name + " run-like";
   c.strain_unit = c.force_unit = c.energy_unit = "1";
-  const std::size_t stride = std::max<std::size_t>(1, rows.every / 20);
-  for (std::size_t end = 0; end <= steps; end += rows.every) {
-    double mx = x[end], mf = force[end], me = energy[end];
-    if (rows.means && end > 0) {
-      mx = mf = me = 0.0;
-      std::size_t n = 0;
-      for (std::size_t k = end - rows.every + stride; k <= end; k += stride, ++n) {
-        mx += x[k];
-        mf += force[k];
-        me += energy[k];
-      }
-      mx /= double(n);
-      mf /= double(n);
-      me /= double(n);
-    }
-    c.strain.push_back(mx);
-    c.force.push_back(mf);
-    c.energy.push_back(me);
+  for (std::size_t end = 0; end < steps.strain.size(); end += rows.every) {
+    c.strain.push_back(row(steps.strain, end));
+    c.force.push_back(row(steps.force, end));
+    c.energy.push_back(row(steps.energy, end));
   }
   return c;
 }
