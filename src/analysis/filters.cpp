@@ -99,11 +99,19 @@ std::vector<double> savgol_coefficients(int window, int order, int deriv, double
     double power = 1.0;
     for (int k = 0; k <= order; ++k, power *= t) vandermonde(j, k) = power;
   }
-  // Row `deriv` of the pseudo-inverse maps data to the polynomial coefficient of t^deriv.
-  const Eigen::MatrixXd pseudo_inverse = vandermonde.completeOrthogonalDecomposition().pseudoInverse();
+  // Row `deriv` of the pseudo-inverse R⁻¹Qᵀ (thin QR, V full column rank) maps data to the
+  // polynomial coefficient of t^deriv: that row is Q·R⁻ᵀe_deriv. Only the thin factors are formed,
+  // O(window·order²); the full pseudo-inverse costs O(window²), which long filter edges cannot afford.
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(vandermonde);
+  const Eigen::MatrixXd upper = qr.matrixQR().topRows(order + 1).triangularView<Eigen::Upper>();
+  Eigen::VectorXd row = Eigen::VectorXd::Unit(order + 1, deriv);
+  upper.transpose().triangularView<Eigen::Lower>().solveInPlace(row);
+  Eigen::VectorXd padded = Eigen::VectorXd::Zero(window);
+  padded.head(order + 1) = row;
+  const Eigen::VectorXd pseudo_inverse_row = qr.householderQ() * padded;
   const double factor = factorial(deriv) / std::pow(scale, deriv);
   std::vector<double> weights(static_cast<std::size_t>(window));
-  for (int j = 0; j < window; ++j) weights[static_cast<std::size_t>(j)] = factor * pseudo_inverse(deriv, j);
+  for (int j = 0; j < window; ++j) weights[static_cast<std::size_t>(j)] = factor * pseudo_inverse_row(j);
   return weights;
 }
 

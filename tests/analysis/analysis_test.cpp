@@ -848,7 +848,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-26").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-27").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-28").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-29").empty());
+  EXPECT_EQ(calibration_set("held-out-29").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-30").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 

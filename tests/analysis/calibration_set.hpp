@@ -237,6 +237,11 @@ inline const HeldOutSet later_held_out_sets[] = {
     // not run yet (docs/analysis.md, "Where the rows fall").
     {"held-out-28", 5.9, 2.8, 0.051, 0.99, 0.31, 6.1, {"weibull mixture k=3 35/65 x1.5", 0.35, 3, 1.5, 2.9}},
     {"held-out-28", 4.3, 2.2, 0.14, 0.74, 0.57, 3.9, {"weibull mixture k=5.3 57/43 x1.4", 0.57, 5.3, 1.4, 2}},
+    // Twelve shapes drawn by bench/draw_held_out.py 29, fixed before x_p's random-walk factors learned
+    // on held-outs 23 to 25 were checked, with every shipped factor on the code of this release; run
+    // once (docs/analysis.md, "x_p's random-walk factors from the three latest sets, checked on held-out 29").
+    {"held-out-29", 4.8, 4.2, 0.056, 0.54, 0.537, 3.3, {"weibull mixture k=4.8 60/40 x1.4", 0.6, 4.8, 1.4, 2.1}},
+    {"held-out-29", 5.1, 5.8, 0.2, 0.98, 0.219, 7.7, {"weibull mixture k=4.8 46/54 x1.3", 0.46, 4.8, 1.3, 1.9}},
 };
 // clang-format on
 
@@ -448,7 +453,7 @@ inline bool in_first_held_out(const Shape& s) {
   return s.name.rfind("lognormal", 0) == 0 || s.name == "weibull mixture" || s.name == "powerlaw alpha=10";
 }
 
-// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-28,
+// A set by the name bench/analysis_calibration takes (tuning, held-out, held-out-2 ... held-out-29,
 // all; a held-out name's rows in order); empty for any other name.
 inline std::vector<Shape> calibration_set(const std::string& name) {
   std::vector<Shape> chosen;
