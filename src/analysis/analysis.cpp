@@ -809,12 +809,12 @@ StrainInterval strain_interval(const Measured& m, const IntervalScales& scales) 
           .scales = scales};
 }
 
-// A curve split at a sharp collapse: no interval factors are calibrated on such curves (factors learned
-// on the calibration's brittle groups passed their check under a walk only as an average over cuts
-// close to and far from the peak, which they fit in neither; docs/analysis.md, "Intervals of a curve
-// cut by a collapse"), so its intervals of x_c, x_p and δ_x say they are not calibrated, and a
-// warning says why.
-void mark_collapse_uncalibrated(AnalysisResult& r) {
+// Marks the intervals of x_c, x_p and δ_x not calibrated, with a warning saying why where any of them
+// was: on a curve split at a sharp collapse (factors learned on the calibration's brittle groups
+// passed their check under a walk only as an average over cuts close to and far from the peak, which
+// they fit in neither; docs/analysis.md, "Intervals of a curve cut by a collapse"), and where the
+// noise model read a ringing curve (ringing_read).
+void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   bool was_calibrated = r.interval_scales.calibrated;
   for (auto* interval : {&r.x_c_interval, &r.x_p_interval}) {
     if (!*interval) continue;
@@ -822,14 +822,7 @@ void mark_collapse_uncalibrated(AnalysisResult& r) {
     (*interval)->scales.calibrated = false;
   }
   r.interval_scales.calibrated = false;
-  if (!was_calibrated) return;
-  r.warnings.push_back(fmt::format(
-      "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered apart from the "
-      "loading; the intervals of x_c, x_p and delta_x are not calibrated on such curves (on brittle curves "
-      "with known answers the 68 % interval of delta_x covered about half of them where the collapse came "
-      "within 1.1 x_c and nearly all beyond 1.2 x_c; docs/analysis.md, \"Intervals of a curve cut by a "
-      "collapse\")",
-      *r.collapse_onset, r.strain_unit));
+  if (was_calibrated) r.warnings.push_back(std::move(why));
 }
 
 // 7. δ_x by the chosen method, then Γ and α, and the acceptance of the uncertainty.
@@ -871,7 +864,28 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
              "peaks is too short)");
     }
   }
-  if (r.collapse_onset) mark_collapse_uncalibrated(r);
+  if (r.collapse_onset) {
+    mark_intervals_uncalibrated(
+        r,
+        fmt::format("the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered "
+                    "apart from the loading; the intervals of x_c, x_p and delta_x are not calibrated on "
+                    "such curves (on brittle curves with known answers the 68 % interval of delta_x "
+                    "covered about half of them where the collapse came within 1.1 x_c and nearly all "
+                    "beyond 1.2 x_c; docs/analysis.md, \"Intervals of a curve cut by a collapse\")",
+                    *r.collapse_onset, r.strain_unit));
+  }
+  if (ringing_read(r)) {
+    const auto& f = r.noise_model.force;
+    const auto& e = r.noise_model.energy;
+    mark_intervals_uncalibrated(
+        r, fmt::format("{} rings (its structure function falls with the lag, as a run's force does when rows "
+                       "come faster than its slowest mode): its walk was read on means of {} rows; the "
+                       "intervals of x_c, x_p and delta_x are not calibrated there (docs/analysis.md, "
+                       "\"What F's ringing does to the noise model\"; rows averaged over at least the "
+                       "ringing's period avoid it)",
+                       f.ringing_block > 0 ? "F" : "E_e",
+                       f.ringing_block > 0 ? f.ringing_block : e.ringing_block));
+  }
   r.delay = delay;
   r.delta_x = measured(delay.mean, delay.sd, r.strain_unit);
   if (delay.mean != 0.0 && r.energy_peak->found) {

@@ -319,6 +319,11 @@ bool scored_as_random_walk(const AnalysisResult& result);
 // scaled intervals covered 24-50 % at 68 % (docs/analysis.md, "Known limits"): x_c's interval is
 // then marked not calibrated, with a warning where it would otherwise have been.
 bool force_walk_hidden(const AnalysisResult& result);
+// Whether the bootstrap window's noise model read a ringing curve's walk on block means
+// (NoiseComponents::ringing_block). That reading was measured on known answers that ring as a run
+// does (docs/analysis.md, "What F's ringing does to the noise model"), not checked on held-out
+// ones: the intervals of x_c, x_p and δ_x are then marked not calibrated, with a warning.
+bool ringing_read(const AnalysisResult& result);
 // E_e's white noise in the bootstrap window as a share of E_max (the level x_p's and δ_x's white
 // factors follow); NaN without E_max or where it is 0.
 double energy_white_share(const AnalysisResult& result);

@@ -120,7 +120,8 @@ nlohmann::json delay_json(const AnalysisResult& r) {
 nlohmann::json uncertainty_json(const AnalysisResult& r) {
   const auto noise_json = [](const NoiseComponents& c, const std::string& unit) {
     return nlohmann::json{{"white_sd", io::quantity(c.white, unit)},
-                          {"walk_step_sd", io::quantity(c.walk, unit)}};
+                          {"walk_step_sd", io::quantity(c.walk, unit)},
+                          {"ringing_block", io::quantity(static_cast<double>(c.ringing_block), "samples")}};
   };
   return {{"method",
            "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "

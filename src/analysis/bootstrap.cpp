@@ -82,6 +82,50 @@ NoiseComponents fit_components(const std::vector<double>& s) {
   return best;
 }
 
+// Under the model S(L) never falls as L grows (each term is constant or rising). A ringing's second
+// differences do: a period of P samples cancels at lags near P and adds up near P/2. A fall below
+// half the largest value at a shorter lag marks one (white noise's estimates stay within ~20 %).
+constexpr double ringing_fall = 0.5;
+
+bool rings(const std::vector<double>& s) {
+  double highest = 0.0;
+  for (double v : s) {
+    if (v < ringing_fall * highest) return true;
+    highest = std::max(highest, v);
+  }
+  return false;
+}
+
+// The components of one curve. Where its structure function rings (a DEM run's F, sampled faster
+// than its slowest mode: docs/analysis.md, "What F's ringing does to the noise model"), the fit
+// reads the ringing as a walk or hides the walk under it. The walk is then read on means over
+// blocks of k samples, the shortest k (2 to 8) whose structure function no longer rings: a block
+// of about one period damps the ringing, and a walk's step over a block is √k times its step per
+// sample. The ringing itself enters as white noise of its own variance (the mean of S(L)/6 over the
+// lags, where its correlations average out), which the filter removes as it removes the ringing.
+NoiseComponents fit_curve(std::span<const double> y, std::size_t low, std::size_t high,
+                          const std::vector<double>& s) {
+  if (!rings(s)) return fit_components(s);
+  constexpr std::size_t longest_lag = 8, fewest_blocks = 4 * longest_lag + 1;
+  for (std::size_t k = 2; k <= 8; ++k) {
+    const std::size_t blocks = (high + 1 - low) / k;
+    if (blocks < fewest_blocks) break;
+    std::vector<double> means(blocks);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const auto first = y.begin() + static_cast<std::ptrdiff_t>(low + b * k);
+      means[b] = std::accumulate(first, first + static_cast<std::ptrdiff_t>(k), 0.0) / static_cast<double>(k);
+    }
+    const auto block = structure_function(means, 0, blocks - 1);
+    if (rings(block.s)) continue;
+    NoiseComponents c;
+    c.ringing_block = k;
+    c.walk = fit_components(block.s).walk / std::sqrt(static_cast<double>(k));
+    c.white = std::sqrt(std::accumulate(s.begin(), s.end(), 0.0) / (6.0 * static_cast<double>(s.size())));
+    return c;
+  }
+  return fit_components(s);
+}
+
 double quantile_sorted(const std::vector<double>& sorted, double p) {
   if (sorted.empty()) return 0.0;
   const double position = p * static_cast<double>(sorted.size() - 1);
@@ -100,8 +144,8 @@ NoiseModel estimate_noise(std::span<const double> force, std::span<const double>
   NoiseModel model;
   const auto f = structure_function(force, low, high);
   const auto e = structure_function(energy, low, high);
-  model.force = fit_components(f.s);
-  model.energy = fit_components(e.s);
+  model.force = fit_curve(force, low, high, f.s);
+  model.energy = fit_curve(energy, low, high, e.s);
   double cross = 0.0, ff = 0.0, ee = 0.0;
   for (std::size_t i = 0; i < f.d1.size(); ++i) {
     if (std::isnan(f.d1[i]) || std::isnan(e.d1[i])) continue;

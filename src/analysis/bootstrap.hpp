@@ -29,6 +29,8 @@ namespace rupture::analysis {
 struct NoiseComponents {
   double white = 0.0, walk = 0.0;
   std::vector<double> walk_profile;  // empty: the same step everywhere
+  // 0, or the samples per block mean on which a ringing curve's walk was read (estimate_noise).
+  std::size_t ringing_block = 0;
 };
 
 struct NoiseModel {
@@ -40,7 +42,9 @@ struct NoiseModel {
 // of second differences at lags L = 1..8, S(L) = 6σ_w² + 2Lσ_r² + L⁴c (white noise, random walk,
 // and the curve's own curvature c, which the fit separates instead of a filter, so that no noise is
 // filtered away before it is measured). The correlation of F with E_e is that of their lag-1
-// second differences.
+// second differences. A curve whose S(L) falls with the lag rings (a DEM run's F sampled faster
+// than its slowest mode), which the three terms cannot describe: its walk is read on block means
+// (NoiseComponents::ringing_block) and the ringing taken as white noise of its own variance.
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
                           std::size_t high);
 

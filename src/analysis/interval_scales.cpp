@@ -15,6 +15,10 @@ bool force_walk_hidden(const AnalysisResult& r) {
   return scored_as_random_walk(r) && r.noise_model.force.walk == 0.0 && r.noise_model.energy.walk > 0.0;
 }
 
+bool ringing_read(const AnalysisResult& r) {
+  return r.noise_model.force.ringing_block > 0 || r.noise_model.energy.ringing_block > 0;
+}
+
 IntervalScales white_level_scales(const WhiteLevelScales& model, double energy_white_share) {
   const auto& anchors = model.anchors;
   if (!(energy_white_share >= model.calibrated_from)) return uncalibrated_scales;
