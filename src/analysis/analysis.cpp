@@ -825,6 +825,33 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (was_calibrated) r.warnings.push_back(std::move(why));
 }
 
+// The cases whose intervals no check has calibrated: a record cut by a sharp collapse, and a noise
+// model that read a ringing curve.
+void mark_unchecked_cases(AnalysisResult& r) {
+  if (r.collapse_onset) {
+    mark_intervals_uncalibrated(
+        r,
+        fmt::format("the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered "
+                    "apart from the loading; the intervals of x_c, x_p and delta_x are not calibrated on "
+                    "such curves (on brittle curves with known answers the 68 % interval of delta_x "
+                    "covered about half of them where the collapse came within 1.1 x_c and nearly all "
+                    "beyond 1.2 x_c; docs/analysis.md, \"Intervals of a curve cut by a collapse\")",
+                    *r.collapse_onset, r.strain_unit));
+  }
+  if (ringing_read(r)) {
+    const auto& f = r.noise_model.force;
+    const auto& e = r.noise_model.energy;
+    mark_intervals_uncalibrated(
+        r, fmt::format("{} rings (its structure function falls with the lag, as a run's force does when rows "
+                       "come faster than its slowest mode): its walk was read on means of {} rows; the "
+                       "intervals of x_c, x_p and delta_x are not calibrated there (docs/analysis.md, "
+                       "\"What F's ringing does to the noise model\"; rows averaged over at least the "
+                       "ringing's period avoid it)",
+                       f.ringing_block > 0 ? "F" : "E_e",
+                       f.ringing_block > 0 ? f.ringing_block : e.ringing_block));
+  }
+}
+
 // 7. δ_x by the chosen method, then Γ and α, and the acceptance of the uncertainty.
 void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInterval& direct,
                     const AnalysisOptions& options, AnalysisResult& r) {
@@ -864,28 +891,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
              "peaks is too short)");
     }
   }
-  if (r.collapse_onset) {
-    mark_intervals_uncalibrated(
-        r,
-        fmt::format("the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered "
-                    "apart from the loading; the intervals of x_c, x_p and delta_x are not calibrated on "
-                    "such curves (on brittle curves with known answers the 68 % interval of delta_x "
-                    "covered about half of them where the collapse came within 1.1 x_c and nearly all "
-                    "beyond 1.2 x_c; docs/analysis.md, \"Intervals of a curve cut by a collapse\")",
-                    *r.collapse_onset, r.strain_unit));
-  }
-  if (ringing_read(r)) {
-    const auto& f = r.noise_model.force;
-    const auto& e = r.noise_model.energy;
-    mark_intervals_uncalibrated(
-        r, fmt::format("{} rings (its structure function falls with the lag, as a run's force does when rows "
-                       "come faster than its slowest mode): its walk was read on means of {} rows; the "
-                       "intervals of x_c, x_p and delta_x are not calibrated there (docs/analysis.md, "
-                       "\"What F's ringing does to the noise model\"; rows averaged over at least the "
-                       "ringing's period avoid it)",
-                       f.ringing_block > 0 ? "F" : "E_e",
-                       f.ringing_block > 0 ? f.ringing_block : e.ringing_block));
-  }
+  mark_unchecked_cases(r);
   r.delay = delay;
   r.delta_x = measured(delay.mean, delay.sd, r.strain_unit);
   if (delay.mean != 0.0 && r.energy_peak->found) {

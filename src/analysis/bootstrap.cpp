@@ -16,6 +16,8 @@ namespace rupture::analysis {
 namespace {
 
 constexpr int scales[] = {1, 2, 3, 4, 6, 8};  // lags L of the structure function
+// The shortest span whose structure function is read: the longest lag on both sides of 17 samples.
+constexpr std::size_t shortest_span = 4 * static_cast<std::size_t>(scales[std::size(scales) - 1]) + 1;
 
 // S(L) = mean((y[i+L] − 2y[i] + y[i−L])²) over [low, high] for each L in `scales`, leaving out
 // values above 10 robust sd (a sudden drop at failure is no noise). Also keeps the L = 1 values,
@@ -106,10 +108,9 @@ bool rings(const std::vector<double>& s) {
 NoiseComponents fit_curve(std::span<const double> y, std::size_t low, std::size_t high,
                           const std::vector<double>& s) {
   if (!rings(s)) return fit_components(s);
-  constexpr std::size_t longest_lag = 8, fewest_blocks = 4 * longest_lag + 1;
   for (std::size_t k = 2; k <= 8; ++k) {
     const std::size_t blocks = (high + 1 - low) / k;
-    if (blocks < fewest_blocks) break;
+    if (blocks < shortest_span) break;
     std::vector<double> means(blocks);
     for (std::size_t b = 0; b < blocks; ++b) {
       const auto first = y.begin() + static_cast<std::ptrdiff_t>(low + b * k);
@@ -165,13 +166,10 @@ bool random_walk_dominates(const NoiseModel& model) {
   return random_walk_dominates(model.force) || random_walk_dominates(model.energy);
 }
 
-// A quarter needs the structure function's longest lag (8) on both sides of 17 samples.
-constexpr std::size_t shortest_quarter = 33;
-
 int walk_dominated_quarters(std::span<const double> force, std::span<const double> energy, std::size_t low,
                             std::size_t high) {
   high = std::min(high, force.size() - 1);
-  if (high < low || high - low + 1 < 4 * shortest_quarter) return 0;
+  if (high < low || high - low + 1 < 4 * shortest_span) return 0;
   const std::size_t n = high + 1 - low;
   int quarters = 0;
   for (std::size_t q = 0; q < 4; ++q)

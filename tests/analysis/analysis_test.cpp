@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <numeric>
 #include <set>
 #include <string>
@@ -628,13 +627,11 @@ TEST(NoiseModel, SeparatesWhiteNoiseFromARandomWalk) {
 // ringing enters as white noise of its own variance. E_e, a walk without ringing, is read as before.
 TEST(NoiseModel, AWalkUnderARingingIsReadOnBlockMeans) {
   const std::size_t n = 4000;
-  const double period = 3.3, quality = 10.0, step = 0.0005, ringing_rms = 0.01;
-  const double decay = std::exp(-std::numbers::pi / (quality * period)),
-               turn = 2.0 * decay * std::cos(2.0 * std::numbers::pi / period);
+  const double step = 0.0005, ringing_rms = 0.01;
+  const calibration::StepOscillator mode(3.3);  // the run-like curves' oscillator, quality 10
   Rng rng(7, RandomStream::analysis_noise);
-  std::vector<double> ringing(n, 0.0), walk(n, 0.0);
-  for (std::size_t i = 2; i < n; ++i)
-    ringing[i] = turn * ringing[i - 1] - decay * decay * ringing[i - 2] + rng.normal();
+  std::vector<double> ringing(n, 0.0);
+  for (std::size_t i = 2; i < n; ++i) mode.step(ringing, i, rng.normal());
   double square = 0.0;
   for (double r : ringing) square += r * r / static_cast<double>(n);
   std::vector<double> force(n), energy(n);
