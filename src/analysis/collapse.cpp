@@ -26,7 +26,7 @@ std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, s
   return onset;
 }
 
-std::size_t collapse_width(std::size_t force_top) { return force_top / 20; }
+std::size_t collapse_width(std::size_t force_top) { return std::max<std::size_t>(force_top / 20, 5); }
 
 void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
                         std::vector<double>& filtered) {

@@ -28,7 +28,9 @@ std::optional<std::size_t> sharp_collapse_onset(std::span<const double> force, s
                                                 std::size_t width);
 
 // The widest drop (samples) taken for a collapse: a twentieth of the rise to the force peak (a slower
-// one is the curve's own decline: a finite bundle recorded far past its peak falls gradually). It no
+// one is the curve's own decline: a finite bundle recorded far past its peak falls gradually), and at
+// least 5 samples: a run's means every 400 steps reach the peak in ~70 rows and take 3-4 to fall, and
+// no filter follows a drop that short (docs/analysis.md, "A collapse over a few coarse rows"). It no
 // longer depends on the filter: a weak filter (a run's rows every 100 steps, whose ringing reads as
 // white noise) made a drop over ten rows one "the filter follows", and then nothing kept ℰ's search
 // off its corner (docs/analysis.md, "Known answers that ring as a run does").

@@ -14,11 +14,13 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   const std::size_t n = y.size();
   if (n < 2 * options.min_side + 1) {
     fit.problem = fmt::format("only {} samples, a peak fit needs {}", n, 2 * options.min_side + 1);
+    fit.cut_short = true;
     return fit;
   }
   const std::size_t top = static_cast<std::size_t>(std::max_element(y.begin(), y.end()) - y.begin());
   fit.index = top;
   if (top < options.min_side || top + options.min_side >= n) {
+    fit.cut_short = top >= options.min_side;
     fit.problem = fmt::format("the maximum lies at the {} of the data (x = {:.6g})",
                               top < options.min_side ? "start" : "end", x[top]);
     return fit;

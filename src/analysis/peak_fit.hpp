@@ -26,6 +26,8 @@ struct PeakFit {
   double window_low = 0.0, window_high = 0.0;  // strain range of the fit
   std::size_t points = 0;                      // samples in the fit
   std::size_t index = 0;                       // index of the largest sample
+  bool cut_short = false;  // not found because the data ends too soon: too few samples, or the largest
+                           // within min_side of the end
 };
 
 // Fits a cubic to (x, y) around the largest y. `noise` is the per-sample standard deviation of the
