@@ -2,15 +2,15 @@
 """Single samples against means over the row's interval, on one DEM run (docs/analysis.md, "Where the
 rows fall").
 
-Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10]
+Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10] [SPACINGS=100,200,400]
 
 DENSE_CURVES is a curves.csv written with a row every BASE_STEPS steps (`rupture run CONFIG --set
-output.interval=10`). From it, for rows every 100, 200 and 400 steps, five curves are built that start
-at five different steps (offsets spread over one spacing): once keeping each spacing's single rows
-("sample", what a run writes with that output.interval as a snapshot) and once averaging the dense
-rows over each spacing ("mean", what rupture run writes in its *_mean columns). Each is analysed with
-default options. Printed per spacing and kind: δ_x (sd) for each start ("rejected" where the analysis
-rejects the curve, "-" where it finds no δ_x) and their sd over the accepted starts.
+output.interval=10`). From it, for rows every SPACINGS steps, five curves are built that start at five
+different steps (offsets spread over one spacing): once keeping each spacing's single rows ("sample",
+what a run writes with that output.interval as a snapshot) and once averaging the dense rows over each
+spacing ("mean", what rupture run writes in its *_mean columns). Each is analysed with default options.
+Printed per spacing and kind: δ_x (sd) for each start ("rejected" where the analysis rejects the curve,
+"-" where it finds no δ_x) and their sd over the accepted starts.
 The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
 samples. Standard library only.
 """
@@ -27,6 +27,7 @@ def main(argv):
         sys.exit(__doc__)
     rupture, dense = argv[1], pathlib.Path(argv[2])
     base = int(argv[3]) if len(argv) > 3 else 10
+    spacings = [int(v) for v in argv[4].split(",")] if len(argv) > 4 else [100, 200, 400]
     lines = [line for line in dense.read_text().splitlines() if line and not line.startswith("#")]
     names = lines[0].split(",")
     keep = [i for i, name in enumerate(names) if "_mean[" not in name]
@@ -44,7 +45,7 @@ def main(argv):
 
         print("| rows every (steps) | kind | δ_x (sd) [%] at five starts | sd over the starts [%] |")
         print("|---|---|---|---|")
-        for spacing in (100, 200, 400):
+        for spacing in spacings:
             k = spacing // base
             for kind in ("sample", "mean"):
                 found = []
