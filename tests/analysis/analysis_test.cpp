@@ -1046,6 +1046,18 @@ TEST(AnalyzeCurve, TheLoadingsCutEndLeavesThePrecursorWhereItIs) {
   }
 }
 
+// A run-like curve (calibration_set.hpp) analysed with default options, with where it was cut and its
+// row spacing (strain).
+struct AnalysedRunLike {
+  double cut, row;
+  AnalysisResult r;
+};
+AnalysedRunLike analysed_run_like(const calibration::Shape& s, const calibration::RunRows& rows,
+                                  std::uint64_t seed) {
+  const Curve c = calibration::run_like_curve(s, 10000, rows, seed);
+  return {calibration::run_like_cut(s, seed), c.strain[1] - c.strain[0], analyze_curve(c, {})};
+}
+
 // A run's rows every 100 steps of a sample that comes apart (calibration_set.hpp's run-like curves):
 // F rings at a third of a cycle per row, reads as white and is barely filtered (cutoff ~0.46), and F
 // takes ~9 rows to fall from twice the collapse level to below it. With a collapse width of two filter
@@ -1061,9 +1073,7 @@ TEST(AnalyzeCurve, ARunsRingingCollapseIsFoundWhereE_eBeginsToFall) {
   const Shape s = weibull(3);
   const Truth t = truth(s);
   for (const std::uint64_t seed : {1017, 7017, 31017}) {
-    const Curve c = run_like_curve(s, 10000, {100, false, 0.008, true}, seed);
-    const double cut = run_like_cut(s, seed), row = c.strain[1] - c.strain[0];
-    const auto r = analyze_curve(c, {});
+    const auto [cut, row, r] = analysed_run_like(s, {100, false, 0.008, true}, seed);
     EXPECT_TRUE(r.accepted || r.rejection.starts_with("the peaks are unstable under the curve's own noise"))
         << seed << ": " << r.rejection;
     ASSERT_TRUE(r.x_p && r.x_c && r.delta_x) << seed;
@@ -1087,9 +1097,7 @@ TEST(AnalyzeCurve, ACollapseOverAFewCoarseRowsIsFoundHoweverShortTheRise) {
   const Shape s = weibull(2);
   const Truth t = truth(s);
   for (const std::uint64_t seed : {30017, 42017, 186017}) {
-    const Curve c = run_like_curve(s, 10000, {400, true, 0.008, true}, seed);
-    const double cut = run_like_cut(s, seed), row = c.strain[1] - c.strain[0];
-    const auto r = analyze_curve(c, {});
+    const auto [cut, row, r] = analysed_run_like(s, {400, true, 0.008, true}, seed);
     ASSERT_TRUE(r.x_p && r.x_c && r.delta_x) << seed << ": " << r.rejection;
     ASSERT_TRUE(r.collapse_onset) << seed;
     EXPECT_LE(*r.collapse_onset, cut + row) << seed;
