@@ -8,9 +8,10 @@ DENSE_CURVES is a curves.csv written with a row every BASE_STEPS steps (`rupture
 output.interval=10`). From it, for rows every SPACINGS steps, five curves are built that start at five
 different steps (offsets spread over one spacing): once keeping each spacing's single rows ("sample",
 what a run writes with that output.interval as a snapshot) and once averaging the dense rows over each
-spacing ("mean", what rupture run writes in its *_mean columns). Each is analysed with default options.
-Printed per spacing and kind: δ_x (sd) for each start ("rejected" where the analysis rejects the curve,
-"-" where it finds no δ_x) and their sd over the accepted starts.
+spacing ("mean", what rupture run writes in its *_mean columns, and written under those names so that
+the analysis reads them as means). Each is analysed with default options. Printed per spacing and kind:
+δ_x (sd) for each start ("rejected" where the analysis rejects the curve, "-" where it finds no δ_x) and
+their sd over the accepted starts.
 The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
 samples. Standard library only.
 """
@@ -36,8 +37,14 @@ def main(argv):
     with tempfile.TemporaryDirectory() as tmp:
         curve, out = pathlib.Path(tmp) / "curve.csv", pathlib.Path(tmp) / "analysis.json"
 
-        def analyse(built):
-            curve.write_text("\n".join([header] + [",".join(repr(v) for v in row) for row in built]) + "\n")
+        # The means go under the names a run gives them, so that the analysis reads them as means.
+        means_header = ",".join(name.replace("[", "_mean[", 1) if name.split("[")[0] in
+                                ("strain", "force_top", "elastic_energy") else name
+                                for name in header.split(","))
+
+        def analyse(built, kind):
+            curve.write_text("\n".join([means_header if kind == "mean" else header] +
+                                       [",".join(repr(v) for v in row) for row in built]) + "\n")
             subprocess.run([rupture, "analyze", str(curve), "-o", str(out)], capture_output=True)
             result = json.loads(out.read_text()) if out.exists() else {}
             delta = result.get("delta_x") or {}
@@ -55,7 +62,7 @@ def main(argv):
                     else:
                         built = [rows[0]] + [[sum(c) / k for c in zip(*rows[i:i + k])]
                                              for i in range(1 + start, len(rows) - k + 1, k)]
-                    found.append(analyse(built))
+                    found.append(analyse(built, kind))
                 values = [f[0] for f in found if f and f[2]]
                 cells = ", ".join(("%.4f (%.4f)" % f[:2]) + ("" if f[2] else " rejected") if f else "-"
                                   for f in found)
