@@ -657,7 +657,9 @@ std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettin
   const ForceTop top = filtered_force_top(g.force(), filter);
   const auto onset = sharp_collapse_onset(g.force(), g.energy(), top.index, collapse_fraction * top.value,
                                           collapse_width(top.index));
-  if (!onset || *onset + 1 < minimum_samples(filter) || !chooses_own_strength(requested)) return onset;
+  // The loading's rows up to the onset, and for a walk their increments (one fewer), must each fill
+  // the filter's padding.
+  if (!onset || *onset < minimum_samples(filter) || !chooses_own_strength(requested)) return onset;
   Grid loading = g;
   for (auto& y : loading.curves.y) y.resize(*onset + 1);
   loading.xs.resize(*onset + 1);
