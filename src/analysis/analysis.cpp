@@ -727,10 +727,10 @@ void check_peaks(const Grid& g, std::size_t phase, const AcceptanceRules& rules,
   const std::span<const double> phase_rate = std::span<const double>(r.energy_rate).first(phase);
   if (!r.rate_peak->found && r.rate_peak->cut_short && r.collapse_onset) {
     reject(r, fmt::format(
-                  "energy-rate peak: {}, where its search stops short of the collapse's onset (x = {:.6g} "
-                  "{}): either ℰ peaks at the collapse itself or the rows are too coarse to hold the "
-                  "precursor apart from it (rows every fewer steps tell which)",
-                  r.rate_peak->problem, *r.collapse_onset, r.strain_unit));
+                  "energy-rate peak: ℰ's search, which stops short of the collapse's onset (x = {:.6g} {}), "
+                  "ends before its maximum can be fitted: either ℰ peaks at the collapse itself or the rows "
+                  "are too coarse to hold the precursor apart from it (rows every fewer steps tell which)",
+                  *r.collapse_onset, r.strain_unit));
   } else if (!r.rate_peak->found) {
     reject(r, "energy-rate peak: " + r.rate_peak->problem);
   } else if (prominence_of_maximum(phase_rate, r.rate_peak->index) <
