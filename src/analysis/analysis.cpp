@@ -211,6 +211,7 @@ struct PeakSearch {
   // the data's own measurement only. A replicate or the weaker filter's measurement that meets the
   // edge fails instead (a failed replicate; no smoothing shift), as before the step existed.
   bool past_filter_edge = false;
+  std::string_view strain_unit;  // named in a failed fit's problem
 };
 
 struct PeakMeasurement {
@@ -290,7 +291,8 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
     return y.subspan(first, end - first + 1);
   };
   const auto fit_force = [&] {
-    m.force = fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak);
+    m.force =
+        fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak, search.strain_unit);
     m.force_fit_error =
         fit_window_error(inner(xs, last), inner(m.filtered_force, last), m.force, search.peak);
     m.force.index += first;
@@ -312,7 +314,8 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   m.phase_end = std::min(last, loading_phase_end(m.filtered_force, m.force.index, search.collapse_fraction));
   // E_e often peaks right at the collapse: its fit may reach min_side samples past the phase.
   const std::size_t energy_end = std::min(last, m.phase_end + search.peak.min_side);
-  m.energy = fit_peak(inner(xs, energy_end), inner(m.filtered_energy, energy_end), 0.0, 1.0, search.peak);
+  m.energy = fit_peak(inner(xs, energy_end), inner(m.filtered_energy, energy_end), 0.0, 1.0, search.peak,
+                      search.strain_unit);
   // The derivative's first and last half-windows are one-sided polynomial extrapolations, whose
   // noise is several times the interior's: on a noisy curve they would win the maximum.
   const auto half = static_cast<std::size_t>(search.derivative_window / 2);
@@ -331,7 +334,7 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
                                      : inner_first;
   const auto rate_xs = xs.subspan(rate_first, rate_end - rate_first + 1);
   const auto rate_ys = std::span<const double>(m.energy_rate).subspan(rate_first, rate_end - rate_first + 1);
-  m.rate = fit_peak(rate_xs, rate_ys, 0.0, 1.0, search.peak);
+  m.rate = fit_peak(rate_xs, rate_ys, 0.0, 1.0, search.peak, search.strain_unit);
   m.rate_fit_error = fit_window_error(rate_xs, rate_ys, m.rate, search.peak);
   m.energy.index += first;
   m.rate.index += rate_first;
@@ -984,7 +987,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       .collapse_fraction = options.acceptance.collapse_fraction,
       .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
       .collapse_onset = onset,
-      .past_filter_edge = true};
+      .past_filter_edge = true,
+      .strain_unit = r.strain_unit};
   r.derivative_window = search.derivative_window;
   const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
   record_peaks(measurement, g, r);

@@ -9,8 +9,11 @@
 namespace rupture::analysis {
 
 PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double noise, double correlation,
-                 const PeakFitOptions& options) {
+                 const PeakFitOptions& options, std::string_view x_unit) {
   PeakFit fit;
+  const auto strain = [&](double value) {
+    return fmt::format("{:.6g}{}{}", value, x_unit.empty() ? "" : " ", x_unit);
+  };
   const std::size_t n = y.size();
   if (n < 2 * options.min_side + 1) {
     fit.problem = fmt::format("only {} samples, a peak fit needs {}", n, 2 * options.min_side + 1);
@@ -21,8 +24,8 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   fit.index = top;
   if (top < options.min_side || top + options.min_side >= n) {
     fit.cut_short = top >= options.min_side;
-    fit.problem = fmt::format("the maximum lies at the {} of the data (x = {:.6g})",
-                              top < options.min_side ? "start" : "end", x[top]);
+    fit.problem = fmt::format("the maximum lies at the {} of the data (x = {})",
+                              top < options.min_side ? "start" : "end", strain(x[top]));
     return fit;
   }
   const double level = y[top] - options.drop * std::abs(y[top]);
@@ -69,8 +72,8 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
     }
   }
   if (!have) {
-    fit.problem =
-        fmt::format("no maximum of the cubic fit within [{:.6g}, {:.6g}]", fit.window_low, fit.window_high);
+    fit.problem = fmt::format("no maximum of the cubic fit within x = [{:.6g}, {}]", fit.window_low,
+                              strain(fit.window_high));
     return fit;
   }
   const double t = best_t;

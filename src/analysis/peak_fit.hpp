@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rupture::analysis {
@@ -33,9 +34,10 @@ struct PeakFit {
 // Fits a cubic to (x, y) around the largest y. `noise` is the per-sample standard deviation of the
 // unfiltered data and `correlation` its correlation length in samples (filters::correlation_length):
 // the errors are those of a least-squares fit to data with that noise, inflated by the correlation
-// length (consecutive samples are not independent). x must be increasing.
+// length (consecutive samples are not independent). x must be increasing; `x_unit` names its unit in
+// the problem's text.
 PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double noise, double correlation,
-                 const PeakFitOptions& options = {});
+                 const PeakFitOptions& options = {}, std::string_view x_unit = {});
 
 // Indices of the local maxima of y whose topographic prominence (height above the higher of the
 // two lowest points separating it from any higher sample, or from the ends) is at least

@@ -212,9 +212,12 @@ TEST(AnalyzeCurve, ForcePeakBeforeEnergyRatePeakGivesNegativeDelay) {
 
 TEST(AnalyzeCurve, RisingCurveIsRejectedBecauseTheForceMaximumIsAtTheEnd) {
   auto c = power_law_curve(0.0, 1001, 0.45);  // stops before x_c = 0.5
+  c.strain_unit = "%";
   const auto r = analyze_curve(c, {});
   EXPECT_FALSE(r.accepted);
   EXPECT_NE(r.rejection.find("force peak: the maximum lies at the end"), std::string::npos) << r.rejection;
+  EXPECT_NE(r.rejection.find(" %)"), std::string::npos)
+      << "the strain is named with its unit: " << r.rejection;
 }
 
 TEST(AnalyzeCurve, FlatCurveIsRejectedAsNotPronounced) {
