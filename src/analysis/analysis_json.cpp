@@ -142,7 +142,8 @@ nlohmann::json uncertainty_json(const AnalysisResult& r) {
              {{"smoothing_shift", io::quantity(r.smoothing_shift.x_p, r.strain_unit)},
               {"peak_fit", io::quantity(r.peak_fit_error.x_p, r.strain_unit)}}}}},
           {"noise",
-           {{"force", noise_json(r.noise_model.force, r.force_unit)},
+           {{"read_over", io::quantity({r.bootstrap_window_low, r.noise_span_high}, r.strain_unit)},
+            {"force", noise_json(r.noise_model.force, r.force_unit)},
             {"elastic_energy", noise_json(r.noise_model.energy, r.energy_unit)},
             {"correlation", r.noise_model.correlation}}}};
 }

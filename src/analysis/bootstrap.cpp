@@ -18,6 +18,7 @@ namespace {
 constexpr int scales[] = {1, 2, 3, 4, 6, 8};  // lags L of the structure function
 // The shortest span whose structure function is read: the longest lag on both sides of 17 samples.
 constexpr std::size_t shortest_span = 4 * static_cast<std::size_t>(scales[std::size(scales) - 1]) + 1;
+static_assert(shortest_span == shortest_noise_span);
 
 // S(L) = mean((y[i+L] − 2y[i] + y[i−L])²) over [low, high] for each L in `scales`, leaving out
 // values above 10 robust sd (a sudden drop at failure is no noise). Also keeps the L = 1 values,
@@ -27,21 +28,36 @@ struct StructureFunction {
   std::vector<double> d1;  // second differences at L = 1 (NaN where left out)
 };
 
-// Marks the second differences beyond 10 robust sd as left out (NaN): a sudden drop at failure is
-// no noise.
-void leave_out_outliers(std::span<double> d) {
-  const double limit = d.empty() ? 0.0 : 10.0 * robust_scale(d);
-  for (auto& v : d)
-    if (limit > 0.0 && std::abs(v) > limit) v = std::nan("");
+constexpr std::size_t outlier_neighbourhood = 32;  // OutlierScale::local
+
+// Marks the second differences beyond 10 robust sd as left out (NaN), the sd read as `outliers` says.
+void leave_out_outliers(std::span<double> d, OutlierScale outliers) {
+  if (outliers == OutlierScale::span) {
+    const double limit = d.empty() ? 0.0 : 10.0 * robust_scale(d);
+    for (auto& v : d)
+      if (limit > 0.0 && std::abs(v) > limit) v = std::nan("");
+    return;
+  }
+  const std::vector<double> values(d.begin(), d.end());
+  std::vector<double> neighbours;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const std::size_t first = i > outlier_neighbourhood ? i - outlier_neighbourhood : 0;
+    const std::size_t last = std::min(d.size(), i + outlier_neighbourhood + 1);
+    neighbours.assign(values.begin() + static_cast<std::ptrdiff_t>(first),
+                      values.begin() + static_cast<std::ptrdiff_t>(last));
+    const double limit = 10.0 * robust_scale(neighbours);
+    if (limit > 0.0 && std::abs(values[i]) > limit) d[i] = std::nan("");
+  }
 }
 
-StructureFunction structure_function(std::span<const double> y, std::size_t low, std::size_t high) {
+StructureFunction structure_function(std::span<const double> y, std::size_t low, std::size_t high,
+                                     OutlierScale outliers) {
   StructureFunction f;
   for (int L : scales) {
     const auto l = static_cast<std::size_t>(L);
     std::vector<double> d;
     for (std::size_t i = low + l; i + l <= high; ++i) d.push_back(y[i + l] - 2.0 * y[i] + y[i - l]);
-    leave_out_outliers(d);
+    leave_out_outliers(d, outliers);
     double sum = 0.0;
     std::size_t kept = 0;
     for (double v : d) {
@@ -106,7 +122,7 @@ bool rings(const std::vector<double>& s) {
 // sample. The ringing itself enters as white noise of its own variance (the mean of S(L)/6 over the
 // lags, where its correlations average out), which the filter removes as it removes the ringing.
 NoiseComponents fit_curve(std::span<const double> y, std::size_t low, std::size_t high,
-                          const std::vector<double>& s) {
+                          const std::vector<double>& s, OutlierScale outliers) {
   if (!rings(s)) return fit_components(s);
   for (std::size_t k = 2; k <= 8; ++k) {
     const std::size_t blocks = (high + 1 - low) / k;
@@ -116,7 +132,7 @@ NoiseComponents fit_curve(std::span<const double> y, std::size_t low, std::size_
       const auto first = y.begin() + static_cast<std::ptrdiff_t>(low + b * k);
       means[b] = std::accumulate(first, first + static_cast<std::ptrdiff_t>(k), 0.0) / static_cast<double>(k);
     }
-    const auto block = structure_function(means, 0, blocks - 1);
+    const auto block = structure_function(means, 0, blocks - 1, outliers);
     if (rings(block.s)) continue;
     NoiseComponents c;
     c.ringing_block = k;
@@ -139,14 +155,14 @@ double quantile_sorted(const std::vector<double>& sorted, double p) {
 }  // namespace
 
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
-                          std::size_t high) {
+                          std::size_t high, OutlierScale outliers) {
   assert(force.size() == energy.size());
   high = std::min(high, force.size() - 1);
   NoiseModel model;
-  const auto f = structure_function(force, low, high);
-  const auto e = structure_function(energy, low, high);
-  model.force = fit_curve(force, low, high, f.s);
-  model.energy = fit_curve(energy, low, high, e.s);
+  const auto f = structure_function(force, low, high, outliers);
+  const auto e = structure_function(energy, low, high, outliers);
+  model.force = fit_curve(force, low, high, f.s, outliers);
+  model.energy = fit_curve(energy, low, high, e.s, outliers);
   double cross = 0.0, ff = 0.0, ee = 0.0;
   for (std::size_t i = 0; i < f.d1.size(); ++i) {
     if (std::isnan(f.d1[i]) || std::isnan(e.d1[i])) continue;

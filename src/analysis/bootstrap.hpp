@@ -45,8 +45,22 @@ struct NoiseModel {
 // second differences. A curve whose S(L) falls with the lag rings (a DEM run's F sampled faster
 // than its slowest mode), which the three terms cannot describe: its walk is read on block means
 // (NoiseComponents::ringing_block) and the ringing taken as white noise of its own variance.
+// Second differences beyond 10 robust sd are left out (a sudden drop at failure is no noise), the sd
+// read as `outliers` says.
+enum class OutlierScale {
+  // One scale over [low, high]: a span that may hold a collapse, whose smooth fast fall covers many
+  // samples in a row and would set its own neighbourhood's scale (the whole record's kind reading).
+  span,
+  // Each value's neighbourhood's (the values within 32 on either side): a span that stops short of
+  // any collapse. A finite bundle's or a run's walk grows along the curve with its breaks (steps near
+  // the peak 10-100 times those at the start); one scale over the span is the quiet part's and left
+  // out the walk where it matters (docs/analysis.md, "The bootstrap's noise read on the loading").
+  local,
+};
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
-                          std::size_t high);
+                          std::size_t high, OutlierScale outliers = OutlierScale::span);
+// The fewest samples a span needs for estimate_noise: the longest lag on both sides of 17 samples.
+inline constexpr std::size_t shortest_noise_span = 33;
 
 // Whether a random walk dominates one curve's noise: its share of the lag-1 structure function,
 // 2σ_r², exceeds white noise's, 6σ_w².

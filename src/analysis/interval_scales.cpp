@@ -22,7 +22,7 @@ bool ringing_read(const AnalysisResult& r) {
 IntervalScales white_level_scales(const WhiteLevelScales& model, double energy_white_share) {
   const auto& anchors = model.anchors;
   if (!(energy_white_share >= model.calibrated_from)) return uncalibrated_scales;
-  const bool calibrated = energy_white_share <= model.calibrated_to;
+  const bool calibrated = model.passed_last_check && energy_white_share <= model.calibrated_to;
   const auto at = [&](const NoiseLevelAnchor& a) { return IntervalScales{a.level68, a.level95, calibrated}; };
   if (energy_white_share <= anchors.front().share) return at(anchors.front());
   for (std::size_t i = 1; i < anchors.size(); ++i) {

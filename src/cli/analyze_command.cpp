@@ -92,7 +92,7 @@ void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
                      above);
   line("F_c", r.F_c);
   strain_line("x_p", r.x_p, r.x_p_interval);
-  if (r.x_p_interval)
+  if (r.x_p_interval && analysis::precursor_white_levels.passed_last_check)
     print_level_note(out, r, "x_p", "E_e's white noise, share of E_max:", analysis::precursor_noise_level(r),
                      analysis::precursor_white_levels.calibrated_from,
                      analysis::precursor_white_levels.calibrated_to);

@@ -191,6 +191,37 @@ TEST(AnalyzeCurve, ForceAndEnergyWithDifferentNoiseKindsAreWarnedOf) {
   }
 }
 
+// Brittle curves (Weibull k = 3, white noise of 2 % on F and 0.2 % on E_e, no walk) cut at 1.35 x_c,
+// twelve seeds: read across the collapse, the fall entered F's structure function as a walk of 1.3 %
+// of F_c a step and x_c's sd came out at 15 % of x_c. The noise is now read up to the onset: F's
+// white noise as it is on every seed, no walk on most (a third fit a small one, 0.3-0.4 % of F_c a
+// step, by chance), and x_c's sd a few percent of x_c at most, its interval holding the truth.
+TEST(AnalyzeCurve, TheNoiseOfACurveCutByACollapseIsReadOnItsLoading) {
+  using namespace calibration;
+  const Shape s = weibull(3);
+  const Truth t = truth(s);
+  int without_walk = 0;
+  std::vector<double> x_c_sd;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    Curve c = white_noise_curve(s, 1000, 0.002, seed);
+    cut_at_collapse(c, s, 1.35 * t.x_c, true);
+    Rng rng(seed, RandomStream::analysis_noise, 9);
+    for (double& f : c.force) f += 0.0199 * t.F_c * rng.normal();
+    const auto r = analyze_curve(c, {});
+    ASSERT_TRUE(r.accepted) << seed << ": " << r.rejection;
+    ASSERT_TRUE(r.collapse_onset) << seed;
+    EXPECT_LT(r.noise_span_high, *r.collapse_onset) << seed;
+    EXPECT_NEAR(r.noise_model.force.white, 0.02 * t.F_c, 0.003 * t.F_c) << seed;
+    if (r.noise_model.force.walk == 0.0) ++without_walk;
+    EXPECT_LT(r.x_c->error, 0.06 * t.x_c) << seed;
+    EXPECT_NEAR(r.x_c->value, t.x_c, 2.5 * r.x_c->error) << seed;
+    x_c_sd.push_back(r.x_c->error);
+  }
+  EXPECT_GE(without_walk, 8);
+  std::nth_element(x_c_sd.begin(), x_c_sd.begin() + 6, x_c_sd.end());
+  EXPECT_LT(x_c_sd[6], 0.015 * t.x_c);
+}
+
 // F peaks at 0.4, ℰ at 0.5: the force maximum comes first, so δ_x = −0.1 and the posterior must
 // say so (the prior admits both signs).
 TEST(AnalyzeCurve, ForcePeakBeforeEnergyRatePeakGivesNegativeDelay) {
@@ -417,8 +448,10 @@ TEST(AnalyzeCurve, NoiseFreeCurvesOfEveryShapeRecoverTheirMaxima) {
 
 // A cubic over a peak that falls much faster after its top than it rises misses the maximum by an
 // amount no noise replicate shows (−3.5e-4 at α = 8.4, whatever the rows). The peak fits' own error
-// estimates it, within 15 %, and x_c's and x_p's 95 % intervals hold the truth; without the term
-// the sd was 6e-8.
+// estimates it at x_c, within 15 %, and x_c's and x_p's 95 % intervals hold the truth; without the
+// term the sd was 6e-8. (At x_p the noise model, read on the loading up to the collapse, takes the
+// law's curvature growing towards it for a walk of 1.5e-5 a sample, whose replicates then carry x_p's
+// miss instead of the fit's term: docs/analysis.md, "The bootstrap's noise read on the loading".)
 TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
   using namespace calibration;
   const Shape s = power_law(8.4);
@@ -427,16 +460,14 @@ TEST(AnalyzeCurve, TheCubicFitsOwnErrorOnASharpPeakIsInTheStrainsIntervals) {
   ASSERT_TRUE(r.accepted) << r.rejection;
   const double x_c_error = r.x_c->value - t.x_c, x_p_error = r.x_p->value - t.x_p;
   EXPECT_GT(std::abs(x_c_error), 2e-4);  // the fit's error is there to be found
+  EXPECT_GT(std::abs(x_p_error), 2e-4);
   EXPECT_NEAR(r.peak_fit_error.x_c, std::abs(x_c_error), 0.15 * std::abs(x_c_error));
-  EXPECT_NEAR(r.peak_fit_error.x_p, std::abs(x_p_error), 0.15 * std::abs(x_p_error));
+  EXPECT_GE(r.x_p->error, std::abs(x_p_error));
   ASSERT_TRUE(r.x_c_interval && r.x_p_interval);
   EXPECT_LE(r.x_c_interval->ci95_low, t.x_c);
   EXPECT_GE(r.x_c_interval->ci95_high, t.x_c);
   EXPECT_LE(r.x_p_interval->ci95_low, t.x_p);
   EXPECT_GE(r.x_p_interval->ci95_high, t.x_p);
-  // δ_x's sd is the replicates' and the smoothing shift's: the fits' errors at x_c and x_p move
-  // together and are not added to it.
-  EXPECT_LT(r.delta_x->error, r.x_c->error);
 }
 
 // A finite bundle of a sharp law at 300 rows (held-out 24, bundle N = 10^5, curve 7) reads as white
@@ -513,12 +544,18 @@ TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
 // mean of two shares gets the mean of their factors), the end anchors beyond them, calibrated only inside
 // the learning curves' range, and 1 below it or where it is not measured.
 TEST(IntervalScales, PrecursorWhiteFactorsFollowTheMeasuredNoiseLevel) {
-  const auto& model = precursor_white_levels;
+  // The factors as if they had passed their last check (they failed held-out 30: the shipped model says
+  // not calibrated everywhere, below).
+  WhiteLevelScales model = precursor_white_levels;
+  model.passed_last_check = true;
   for (const auto& a : model.anchors) {
     const auto at = white_level_scales(model, a.share);
     EXPECT_DOUBLE_EQ(at.level68, a.level68);
     EXPECT_DOUBLE_EQ(at.level95, a.level95);
     EXPECT_TRUE(at.calibrated);
+    const auto shipped = white_level_scales(precursor_white_levels, a.share);
+    EXPECT_DOUBLE_EQ(shipped.level68, a.level68);
+    EXPECT_FALSE(shipped.calibrated);
   }
   const auto &low = model.anchors[0], &high = model.anchors[1];
   const auto between = white_level_scales(model, std::sqrt(low.share * high.share));
@@ -572,7 +609,7 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   const double share = energy_white_share(white);
   EXPECT_NEAR(share, 0.01, 0.002);
   EXPECT_EQ(white.x_p_interval->scales.level68, white_level_scales(precursor_white_levels, share).level68);
-  EXPECT_TRUE(white.x_p_interval->scales.calibrated);
+  EXPECT_FALSE(white.x_p_interval->scales.calibrated);  // the model failed held-out 30
   EXPECT_EQ(white.interval_scales.level68, delta_interval_scales.white_noise.level68);
   EXPECT_TRUE(white.interval_scales.calibrated && white.x_c_interval->scales.calibrated);
   EXPECT_EQ(bundle.x_p_interval->scales.level68, precursor_strain_scales.random_walk_profile.level68);
@@ -622,6 +659,32 @@ TEST(NoiseModel, SeparatesWhiteNoiseFromARandomWalk) {
   EXPECT_NEAR(model.energy.walk, 0.002, 0.0002);
   EXPECT_LT(model.energy.white, 0.001);
   EXPECT_NEAR(model.correlation, 0.0, 0.1);
+}
+
+// A bundle's walk grows along the curve with its breaks, fastest near the peak: here its step is
+// 10⁻⁶ + 10⁻⁴ x⁸ over x in [0, 1], so most of its variance lies in the last fifth while the median
+// second difference is the quiet part's. One robust scale over the span left that fifth out as
+// outliers (the walk read at a third of its rms step or less); each value's neighbourhood's scale
+// keeps it (docs/analysis.md, "The bootstrap's noise read on the loading").
+TEST(NoiseModel, AWalkThatGrowsAlongTheSpanIsReadWithItsNeighbourhoodsScale) {
+  const std::size_t n = 4000;
+  Rng rng(11, RandomStream::analysis_noise);
+  std::vector<double> force(n), energy(n);
+  double w = 0.0, squares = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i) / static_cast<double>(n);
+    const double step = 1e-6 + 1e-4 * std::pow(x, 8);
+    squares += step * step / static_cast<double>(n);
+    w += step * rng.normal();
+    force[i] = x * (1.0 - x) + 1e-4 * rng.normal();
+    energy[i] = 0.5 * x * x + w;
+  }
+  const double rms_step = std::sqrt(squares);
+  const auto local = estimate_noise(force, energy, 0, n - 1, OutlierScale::local);
+  EXPECT_NEAR(local.energy.walk, rms_step, 0.25 * rms_step);
+  EXPECT_NEAR(local.force.white, 1e-4, 1e-5);
+  const auto span = estimate_noise(force, energy, 0, n - 1, OutlierScale::span);
+  EXPECT_LT(span.energy.walk, 0.35 * rms_step);
 }
 
 // A DEM run's F sampled faster than its slowest mode rings: a damped oscillation of period 3.3 rows
@@ -882,7 +945,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-27").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-28").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-29").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-30").empty());
+  EXPECT_EQ(calibration_set("held-out-30").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-31").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
@@ -1013,10 +1077,14 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     ASSERT_TRUE(r.collapse_onset) << seed;
     EXPECT_NEAR(*r.collapse_onset, cut, 3 * step) << seed;
     EXPECT_EQ(to_json(r)["collapse_onset"]["unit"], "1");
-    // No curve of the calibration had a collapse: the intervals say so, and a warning says why.
+    // No factor is calibrated on curves with a collapse: the intervals are the bootstrap's own, they say
+    // so, and a warning says why.
     EXPECT_FALSE(r.interval_scales.calibrated) << seed;
     EXPECT_FALSE(r.x_c_interval->scales.calibrated) << seed;
     EXPECT_FALSE(r.x_p_interval->scales.calibrated) << seed;
+    EXPECT_EQ(r.interval_scales.level68, 1.0) << seed;
+    EXPECT_EQ(r.x_c_interval->scales.level95, 1.0) << seed;
+    EXPECT_EQ(r.x_p_interval->scales.level68, 1.0) << seed;
     EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
       return w.find("collapse too sharp for the filter") != std::string::npos;
     })) << seed;

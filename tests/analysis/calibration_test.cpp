@@ -106,7 +106,7 @@ TEST(DelayCalibration, IntervalsCoverOnFiniteBundlesOfOtherShapes) {
 // The CI share of the white-noise groups: five shapes of the table at 300 and 1000 rows with white noise of
 // 0.5 % and 2 % of each peak, levels between the calibration table's (x_p's factors interpolate
 // there, analysis.hpp precursor_white_levels). 60 curves, bounds ± 4 binomial sd as above: a guard
-// against an interval a third too narrow or too wide, for every interval that says it is calibrated.
+// against an interval a third too narrow or too wide, for every interval whose factors are applied.
 TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
   using namespace calibration;
   const std::vector<Shape> set = {weibull(3), weibull(5), power_law(3), log_normal(0.3), weibull_mixture()};
@@ -124,9 +124,10 @@ TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
     ASSERT_FALSE(scored_as_random_walk(r)) << s.name << ", " << rows << " rows: white noise read as a walk";
     const auto exact = calibration::truth(s);
     const auto& d = *r.delay;
-    ASSERT_TRUE(r.interval_scales.calibrated && r.x_c_interval->scales.calibrated &&
-                r.x_p_interval->scales.calibrated)
-        << s.name << ": every white interval at these levels is calibrated";
+    ASSERT_TRUE(r.interval_scales.calibrated && r.x_c_interval->scales.calibrated)
+        << s.name << ": δ_x's and x_c's white intervals at these levels are calibrated";
+    // x_p's level model failed held-out 30 by two curves: applied, not calibrated, still guarded here.
+    ASSERT_EQ(r.x_p_interval->scales.calibrated, precursor_white_levels.passed_last_check) << s.name;
     delta.add(exact.delta(), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
     x_c.add(exact.x_c, *r.x_c_interval);
     x_p.add(exact.x_p, *r.x_p_interval);
