@@ -2,7 +2,7 @@
 """Single samples against means over the row's interval, on one DEM run (docs/analysis.md, "Where the
 rows fall").
 
-Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10] [SPACINGS=100,200,400]
+Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10] [SPACINGS=100,200,400] [TABLE.csv]
 
 DENSE_CURVES is a curves.csv written with a row every BASE_STEPS steps (`rupture run CONFIG --set
 output.interval=10`). From it, for rows every SPACINGS steps, five curves are built that start at five
@@ -11,7 +11,11 @@ what a run writes with that output.interval as a snapshot) and once averaging th
 spacing ("mean", what rupture run writes in its *_mean columns, and written under those names so that
 the analysis reads them as means). Each is analysed with default options. Printed per spacing and kind:
 δ_x (sd) for each start ("rejected" where the analysis rejects the curve, "-" where it finds no δ_x) and
-their sd over the accepted starts.
+their sd over the accepted starts. With TABLE.csv, every analysis is also appended to that file as a
+row (the dense file, spacing, kind, starting step, accepted, δ_x and its sd, x_p, x_c and their sds in
+the run's strain unit, the rejection), the header written where the file is new: docs/analysis.md's
+"The bootstrap's noise read on the loading" takes the median sd and the rms over runs of δ_x's sd
+over the starts from such a table of five runs.
 The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
 samples. Standard library only.
 """
@@ -29,6 +33,9 @@ def main(argv):
     rupture, dense = argv[1], pathlib.Path(argv[2])
     base = int(argv[3]) if len(argv) > 3 else 10
     spacings = [int(v) for v in argv[4].split(",")] if len(argv) > 4 else [100, 200, 400]
+    table = pathlib.Path(argv[5]) if len(argv) > 5 else None
+    if table and not table.exists():
+        table.write_text("dense,spacing,kind,start,accepted,delta_x,delta_x_sd,x_p,x_p_sd,x_c,x_c_sd,rejection\n")
     lines = [line for line in dense.read_text().splitlines() if line and not line.startswith("#")]
     names = lines[0].split(",")
     keep = [i for i, name in enumerate(names) if "_mean[" not in name]
@@ -48,7 +55,18 @@ def main(argv):
             subprocess.run([rupture, "analyze", str(curve), "-o", str(out)], capture_output=True)
             result = json.loads(out.read_text()) if out.exists() else {}
             delta = result.get("delta_x") or {}
-            return (delta["value"], delta["sd"], bool(result.get("accepted"))) if "value" in delta else None
+            return (delta["value"], delta["sd"], bool(result.get("accepted"))) if "value" in delta else None, result
+
+        def record(result, spacing, kind, start):
+            if not table:
+                return
+            value = lambda name, field: str((result.get(name) or {}).get(field, ""))
+            rejection = (result.get("rejection") or "").replace('"', "'")
+            with table.open("a") as f:
+                f.write(",".join([str(dense), str(spacing), kind, str(start), str(int(bool(result.get("accepted")))),
+                                  value("delta_x", "value"), value("delta_x", "sd"), value("x_p", "value"),
+                                  value("x_p", "error"), value("x_c", "value"), value("x_c", "error"),
+                                  f'"{rejection}"']) + "\n")
 
         print("| rows every (steps) | kind | δ_x (sd) [%] at five starts | sd over the starts [%] |")
         print("|---|---|---|---|")
@@ -62,7 +80,9 @@ def main(argv):
                     else:
                         built = [rows[0]] + [[sum(c) / k for c in zip(*rows[i:i + k])]
                                              for i in range(1 + start, len(rows) - k + 1, k)]
-                    found.append(analyse(built, kind))
+                    delta, result = analyse(built, kind)
+                    found.append(delta)
+                    record(result, spacing, kind, start)
                 values = [f[0] for f in found if f and f[2]]
                 cells = ", ".join(("%.4f (%.4f)" % f[:2]) + ("" if f[2] else " rejected") if f else "-"
                                   for f in found)

@@ -851,9 +851,8 @@ void mark_unchecked_cases(AnalysisResult& r) {
     r.warnings.push_back(fmt::format(
         "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered apart from "
         "the loading; the intervals of x_c, x_p and delta_x are the bootstrap's own, not calibrated on such "
-        "curves (on brittle curves with known answers, held-out 30, the 68 % interval of delta_x covered 52 "
-        "% "
-        "of them where the collapse came within 1.1 x_c and 78-81 % beyond; docs/analysis.md, \"The "
+        "curves (on brittle curves with known answers, held-out 30, the 68 % interval of delta_x covered "
+        "52 % of them where the collapse came within 1.1 x_c and 78-81 % beyond; docs/analysis.md, \"The "
         "bootstrap's noise read on the loading\")",
         *r.collapse_onset, r.strain_unit));
   }
