@@ -290,14 +290,12 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   const auto inner = [&](std::span<const double> y, std::size_t end) {
     return y.subspan(first, end - first + 1);
   };
-  const auto fit_force = [&] {
-    m.force =
-        fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak, search.strain_unit);
-    m.force_fit_error =
-        fit_window_error(inner(xs, last), inner(m.filtered_force, last), m.force, search.peak);
+  const auto fit_force = [&](std::size_t end, const PeakFitOptions& peak) {
+    m.force = fit_peak(inner(xs, end), inner(m.filtered_force, end), 0.0, 1.0, peak, search.strain_unit);
+    m.force_fit_error = fit_window_error(inner(xs, end), inner(m.filtered_force, end), m.force, peak);
     m.force.index += first;
   };
-  fit_force();
+  fit_force(last, search.peak);
   std::optional<std::size_t> onset;
   if (m.force.found && search.collapse_width > 0)
     onset = sharp_collapse_onset(force, energy, m.force.index, search.collapse_fraction * m.force.value,
@@ -307,7 +305,11 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   if (onset) {
     filter_either_side(filter, force, *onset, m.filtered_force);
     filter_either_side(filter, energy, *onset, m.filtered_energy);
-    fit_force();
+    // x_c is the loading's own maximum: a fit window across the onset takes in the collapse's fall,
+    // whose steep first samples tilt the cubic's maximum back by several percent of x_c.
+    PeakFitOptions loading_peak = search.peak;
+    loading_peak.open_end = true;
+    fit_force(std::min(last, *onset), loading_peak);
   }
   const double step = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
   m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
@@ -709,7 +711,8 @@ void record_peaks(const PeakMeasurement& m, const Grid& g, AnalysisResult& r) {
 
 // 5. Acceptance of the peaks (before spending time on the uncertainty). `phase`: the samples of
 // the loading phase.
-void check_peaks(const Grid& g, std::size_t phase, const AcceptanceRules& rules, AnalysisResult& r) {
+void check_peaks(const Grid& g, std::size_t phase, std::optional<std::size_t> collapse_onset,
+                 const AcceptanceRules& rules, AnalysisResult& r) {
   const std::size_t force_top = r.force_peak->index;
   const double F_top = r.filtered_force[force_top];
   // Competing maxima are sought over the whole curve (a second loading after a collapse makes x_c
@@ -727,8 +730,12 @@ void check_peaks(const Grid& g, std::size_t phase, const AcceptanceRules& rules,
                "force peak not pronounced: it rises less than {:g} % of F_c above the curve on either side",
                100.0 * rules.min_prominence));
   } else {
+    // The collapse's filtered start, held at the loading's end (filter_either_side), is no maximum.
+    const auto collapse_start = [&](std::size_t k) {
+      return collapse_onset && k > *collapse_onset && k <= *collapse_onset + edge_samples(r.filter);
+    };
     for (std::size_t k : maxima) {
-      if (k != force_top && r.filtered_force[k] >= rules.competing_maximum * F_top) {
+      if (k != force_top && !collapse_start(k) && r.filtered_force[k] >= rules.competing_maximum * F_top) {
         reject(r,
                fmt::format(
                    "several force maxima of similar height (x = {:.6g} and x = {:.6g} {}): x_c is ambiguous",
@@ -775,8 +782,14 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.noise_span_high = g.xs[run.noise_high];
   r.bootstrap_replicates = boot.attempted;
   r.bootstrap_failed = boot.failed;
-  const auto interval = [&](double estimate, double (*of)(const PeakValues&)) {
-    return bootstrap_interval(estimate, replicate_values(boot.replicates, of));
+  // x_c within the filter's edge of a collapse's onset: no replicate's maximum lies past the onset, so
+  // their shift is the cut's, not the smoothing's, and half of it would carry x_c (and δ_x) past the
+  // onset. There they keep their fitted values, the half shift still counted in their sd.
+  const bool x_c_at_cut =
+      r.collapse_onset &&
+      r.force_peak->x > *r.collapse_onset - static_cast<double>(edge_samples(r.filter)) * (g.xs[1] - g.xs[0]);
+  const auto interval = [&](double estimate, double (*of)(const PeakValues&), bool correct_bias = true) {
+    return bootstrap_interval(estimate, replicate_values(boot.replicates, of), correct_bias);
   };
   const auto shift =
       smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
@@ -790,9 +803,11 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.peak_fit_error = {
       .x_c = fit_error(values.x_c_fit_error, [](const PeakValues& v) { return v.x_c_fit_error; }),
       .x_p = fit_error(values.x_p_fit_error, [](const PeakValues& v) { return v.x_p_fit_error; })};
-  const auto x_c = add_systematic(
-      add_systematic(interval(values.x_c, [](const PeakValues& v) { return v.x_c; }), shift.x_c),
-      r.peak_fit_error.x_c);
+  const auto x_c =
+      add_systematic(add_systematic(interval(
+                                        values.x_c, [](const PeakValues& v) { return v.x_c; }, !x_c_at_cut),
+                                    shift.x_c),
+                     r.peak_fit_error.x_c);
   const auto F_c = interval(values.F_c, [](const PeakValues& v) { return v.F_c; });
   const auto x_p = add_systematic(
       add_systematic(interval(values.x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p),
@@ -810,9 +825,10 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
     const auto ratio = interval(energy_ratio_of(values), energy_ratio_of);  // bias-corrected like the rest
     r.A_r = measured(ratio.estimate, ratio.sd, "1");
   }
-  const auto direct =
-      add_systematic(interval(values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }),
-                     shift.x_c - shift.x_p);
+  const auto direct = add_systematic(
+      interval(
+          values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }, !x_c_at_cut),
+      shift.x_c - shift.x_p);
   r.quiet = is_quiet(run.noise, r);
   r.delta_x_direct = measured(direct.estimate, direct.sd, r.strain_unit);
   r.bootstrap_bias = {.x_c = x_c.bias, .x_p = x_p.bias, .delta_x = direct.bias};
@@ -1002,7 +1018,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.derivative_window = search.derivative_window;
   const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
   record_peaks(measurement, g, r);
-  check_peaks(g, measurement.phase_end + 1, options.acceptance, r);  // 5
+  check_peaks(g, measurement.phase_end + 1, measurement.collapse_onset, options.acceptance, r);  // 5
   // 6–7. A parametric bootstrap of the measurement (bootstrap.hpp) over the span of the three fits,
   // padded, gives every number's uncertainty and δ_x's. The walk's step profile serves the curves
   // read as a random walk, whose interval factors were learned with it; a curve read as white keeps

@@ -38,6 +38,11 @@ void filter_either_side(FilterSettings filter, std::span<const double> raw, std:
   const auto smooth = collapse.size() < need ? std::vector<double>(collapse.begin(), collapse.end())
                                              : apply_filter(filter, collapse);
   std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(onset + 1));
+  // The collapse's filtered start follows its padding, pinned to its first noisy sample: above the
+  // loading's end it would stand as a maximum of the curve where the sample is coming apart.
+  const std::size_t edge = std::min(edge_samples(filter), collapse.size());
+  for (std::size_t i = onset + 1; i <= onset + edge; ++i)
+    filtered[i] = std::min(filtered[i], filtered[onset]);
 }
 
 }  // namespace rupture::analysis

@@ -38,7 +38,8 @@ std::size_t collapse_width(std::size_t force_top);
 
 // The loading and the collapse filtered each on its own, split at the onset, so that the drop's
 // response does not reach back into the loading. The loading's cut end is continued by its trend
-// (filter_continuing_end), the collapse's ends padded as usual. A piece too short for the filter
+// (filter_continuing_end), the collapse's ends padded as usual, its first edge_samples() held at
+// most at the loading's filtered end. A piece too short for the filter
 // stays raw; a loading too short leaves the whole record's filtering.
 void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
                         std::vector<double>& filtered);

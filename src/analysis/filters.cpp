@@ -279,15 +279,16 @@ std::vector<double> filter_continuing_end(const FilterSettings& settings, std::s
   FilterSettings chosen = settings;
   const std::size_t edge = edge_samples(settings), n = y.size();
   if (edge < 3 || n < 2 * edge) return apply_filter(chosen, y);
-  // The least-squares line through the last `edge` samples (Savitzky–Golay weights of order 1): its
-  // value and slope at the last sample.
-  const auto window = static_cast<int>(edge);
-  const auto value_weights = savgol_coefficients(window, 1, 0, window - 1.0);
-  const auto slope_weights = savgol_coefficients(window, 1, 1, window - 1.0);
+  // The tangent at the last sample of the least-squares quadratic through the last three edges (Savitzky–
+  // Golay weights of order 2): its value and slope there.
+  const std::size_t span = std::min(n, 3 * edge);
+  const auto window = static_cast<int>(span);
+  const auto value_weights = savgol_coefficients(window, 2, 0, window - 1.0);
+  const auto slope_weights = savgol_coefficients(window, 2, 1, window - 1.0);
   double end_value = 0.0, slope = 0.0;
-  for (std::size_t j = 0; j < edge; ++j) {
-    end_value += value_weights[j] * y[n - edge + j];
-    slope += slope_weights[j] * y[n - edge + j];
+  for (std::size_t j = 0; j < span; ++j) {
+    end_value += value_weights[j] * y[n - span + j];
+    slope += slope_weights[j] * y[n - span + j];
   }
   std::vector<double> continued(y.begin(), y.end());
   continued.reserve(n + 2 * edge);
