@@ -290,12 +290,14 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   const auto inner = [&](std::span<const double> y, std::size_t end) {
     return y.subspan(first, end - first + 1);
   };
-  const auto fit_force = [&](std::size_t end, const PeakFitOptions& peak) {
-    m.force = fit_peak(inner(xs, end), inner(m.filtered_force, end), 0.0, 1.0, peak, search.strain_unit);
-    m.force_fit_error = fit_window_error(inner(xs, end), inner(m.filtered_force, end), m.force, peak);
+  const auto fit_force = [&] {
+    m.force =
+        fit_peak(inner(xs, last), inner(m.filtered_force, last), 0.0, 1.0, search.peak, search.strain_unit);
+    m.force_fit_error =
+        fit_window_error(inner(xs, last), inner(m.filtered_force, last), m.force, search.peak);
     m.force.index += first;
   };
-  fit_force(last, search.peak);
+  fit_force();
   std::optional<std::size_t> onset;
   if (m.force.found && search.collapse_width > 0)
     onset = sharp_collapse_onset(force, energy, m.force.index, search.collapse_fraction * m.force.value,
@@ -305,11 +307,7 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
   if (onset) {
     filter_either_side(filter, force, *onset, m.filtered_force);
     filter_either_side(filter, energy, *onset, m.filtered_energy);
-    // x_c is the loading's own maximum: a fit window across the onset takes in the collapse's fall,
-    // whose steep first samples tilt the cubic's maximum back by several percent of x_c.
-    PeakFitOptions loading_peak = search.peak;
-    loading_peak.open_end = true;
-    fit_force(std::min(last, *onset), loading_peak);
+    fit_force();
   }
   const double step = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
   m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
@@ -782,8 +780,8 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.noise_span_high = g.xs[run.noise_high];
   r.bootstrap_replicates = boot.attempted;
   r.bootstrap_failed = boot.failed;
-  // x_c within the filter's edge of a collapse's onset: no replicate's maximum lies past the onset, so
-  // their shift is the cut's, not the smoothing's, and half of it would carry x_c (and δ_x) past the
+  // x_c within the filter's edge of a collapse's onset: the replicates' maxima are cut off there, so
+  // their shift is the cut's, not the smoothing's, and half of it carried x_c (and δ_x) past the
   // onset. There they keep their fitted values, the half shift still counted in their sd.
   const bool x_c_at_cut =
       r.collapse_onset &&
@@ -867,9 +865,10 @@ void mark_unchecked_cases(AnalysisResult& r) {
     r.warnings.push_back(fmt::format(
         "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered apart from "
         "the loading; the intervals of x_c, x_p and delta_x are the bootstrap's own, not calibrated on such "
-        "curves (on brittle curves with known answers, held-out 30, the 68 % interval of delta_x covered "
-        "52 % of them where the collapse came within 1.1 x_c and 78-81 % beyond; docs/analysis.md, \"The "
-        "bootstrap's noise read on the loading\")",
+        "curves (on curves with known answers, held-out 30, the 68 % interval of delta_x covered 67 % of the "
+        "brittle ones that came apart within 1.1 x_c and 79-84 % beyond, and 50-56 % of those that ring and "
+        "come apart as a run does, 72 % at single samples every 400 steps; docs/analysis.md, \"x_c of a "
+        "loading cut by a collapse\")",
         *r.collapse_onset, r.strain_unit));
   }
   if (ringing_read(r)) {

@@ -22,8 +22,7 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   }
   const std::size_t top = static_cast<std::size_t>(std::max_element(y.begin(), y.end()) - y.begin());
   fit.index = top;
-  const bool at_open_end = options.open_end && top >= 2 * options.min_side && top + options.min_side >= n;
-  if (top < options.min_side || (top + options.min_side >= n && !at_open_end)) {
+  if (top < options.min_side || top + options.min_side >= n) {
     fit.cut_short = top >= options.min_side;
     fit.problem = fmt::format("the maximum lies at the {} of the data (x = {})",
                               top < options.min_side ? "start" : "end", strain(x[top]));
@@ -33,7 +32,6 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   std::size_t low = top, high = top;
   while (low > 0 && (y[low - 1] >= level || top - low < options.min_side)) --low;
   while (high + 1 < n && (y[high + 1] >= level || high - top < options.min_side)) ++high;
-  while (at_open_end && low > 0 && high - low < 2 * options.min_side) --low;
   fit.points = high - low + 1;
   fit.window_low = x[low];
   fit.window_high = x[high];
@@ -73,28 +71,6 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
       }
     }
   }
-  // At an open end a stationary point past the last sample is no maximum of the data. Where the data
-  // fall after their largest sample, the parabola through it and its two neighbours places the
-  // maximum (a cubic fitted mostly to the rise misses a top that falls steeply into the end); where
-  // they still rise at the last sample, the force was rising when the sample came apart: the maximum
-  // is the last sample.
-  const double end_t = (x[high] - centre) / half_width;
-  double peak_x = 0.0, peak_value = 0.0;
-  if (options.open_end && top > 0 && (!have || best_t > end_t)) {
-    if (top + 1 < n) {
-      const double bend = y[top - 1] - 2.0 * y[top] + y[top + 1], tilt = y[top - 1] - y[top + 1];
-      peak_x = x[top] + 0.25 * (x[top + 1] - x[top - 1]) * tilt / bend;
-      peak_value = y[top] - tilt * tilt / (8.0 * bend);
-    } else {
-      peak_x = x[top];
-      peak_value = y[top];
-    }
-    best_t = (peak_x - centre) / half_width;
-    have = true;
-  } else if (have) {
-    peak_x = centre + best_t * half_width;
-    peak_value = a(0) + best_t * (a(1) + best_t * (a(2) + best_t * a(3)));
-  }
   if (!have) {
     fit.problem = fmt::format("no maximum of the cubic fit within x = [{:.6g}, {}]", fit.window_low,
                               strain(fit.window_high));
@@ -102,8 +78,8 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   }
   const double t = best_t;
   fit.found = true;
-  fit.x = peak_x;
-  fit.value = peak_value;
+  fit.x = centre + t * half_width;
+  fit.value = a(0) + t * (a(1) + t * (a(2) + t * a(3)));
   // Covariance noise^2 * correlation * (D^T D)^-1; x* moves by -δp'(t*) / p''(t*).
   const Eigen::Matrix4d inverse = (design.transpose() * design).inverse();
   const double variance_scale = noise * noise * std::max(1.0, correlation);

@@ -17,11 +17,6 @@ struct PeakFitOptions {
   // on each side of the maximum.
   double drop = 0.05;
   std::size_t min_side = 3;
-  // The data end where a collapse cut the loading short (the loading's rows up to its onset): a
-  // maximum within min_side of the end is fitted by a window that ends there, and a cubic that still
-  // rises at the end puts the maximum at the last sample (the force was still rising when the sample
-  // came apart). Otherwise such a maximum is not found (cut_short).
-  bool open_end = false;
 };
 
 struct PeakFit {
