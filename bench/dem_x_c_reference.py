@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""x_c of DEM runs against a reference taken from their dense rows (docs/analysis.md, "x_c of a loading cut
+by a collapse").
+
+Usage: dem_x_c_reference.py TABLE.csv DENSE_CURVES...
+
+DENSE_CURVES are curves.csv files written with a row every few steps (`rupture run CONFIG --set
+output.interval=10`); TABLE.csv is the table bench/dem_row_means.py appends its analyses of those files to.
+Each run's reference x_c is the strain where the running mean of its top force over 20 and over 40 dense
+rows peaks (within 0.3-0.5 %, the mean of the two), so no filter and no peak fit enter it. Printed: each
+run's reference, then per row spacing and kind the accepted analyses' x_c error against it (mean and rms,
+in the strain's unit) and the share whose error lies within their reported sd. Standard library only.
+"""
+import csv
+import math
+import statistics
+import sys
+
+
+def reference_x_c(path):
+    with open(path, encoding="utf-8") as f:
+        rows = [line for line in f if not line.startswith("#")]
+    reader = csv.reader(rows)
+    header = next(reader)
+    strain_column = next(i for i, name in enumerate(header) if name.startswith("strain["))
+    force_column = next(i for i, name in enumerate(header) if name.startswith("force_top["))
+    data = [(float(r[strain_column]), float(r[force_column])) for r in reader]
+    peaks = []
+    for width in (20, 40):
+        best = None
+        for i in range(len(data) - width + 1):
+            x = sum(p[0] for p in data[i:i + width]) / width
+            force = sum(p[1] for p in data[i:i + width]) / width
+            if 0.3 < x < 0.5 and (best is None or force > best[1]):
+                best = (x, force)
+        if best is None:
+            sys.exit(f"{path}: no rows between 0.3 and 0.5 % strain; name a curves.csv of a run pulled past its peak")
+        peaks.append(best[0])
+    return statistics.mean(peaks)
+
+
+def main(argv):
+    if len(argv) < 3:
+        sys.exit(__doc__)
+    references = {path: reference_x_c(path) for path in argv[2:]}
+    for path, x_c in references.items():
+        print(f"{path}: reference x_c {x_c:.4f}")
+    groups = {}
+    with open(argv[1], newline="", encoding="utf-8") as f:
+        for row in csv.DictReader(f):
+            if row["dense"] in references and row["accepted"] == "1":
+                error = float(row["x_c"]) - references[row["dense"]]
+                groups.setdefault((int(row["spacing"]), row["kind"]), []).append((error, float(row["x_c_sd"])))
+    print("| rows every | kind | accepted | x_c error mean | rms | within its sd |")
+    print("|---|---|---|---|---|---|")
+    for (spacing, kind), values in sorted(groups.items()):
+        errors = [e for e, _ in values]
+        within = sum(abs(e) < sd for e, sd in values) / len(values)
+        rms = math.sqrt(sum(e * e for e in errors) / len(errors))
+        print(f"| {spacing} | {kind} | {len(values)} | {statistics.mean(errors):+.4f} | {rms:.4f} | {100 * within:.0f} % |")
+
+
+if __name__ == "__main__":
+    main(sys.argv)
