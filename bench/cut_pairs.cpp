@@ -26,6 +26,7 @@ struct Summary {
       sum += v;
       square += v * v;
     }
+    if (values.empty()) return;
     const auto n = static_cast<double>(values.size());
     std::printf("%s: mean %+.2f %%, rms %.2f %%\n", what, sum / n, std::sqrt(square / n));
   }

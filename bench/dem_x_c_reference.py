@@ -13,6 +13,7 @@ in the strain's unit) and the share whose error lies within their reported sd. S
 """
 import csv
 import math
+import os
 import statistics
 import sys
 
@@ -42,15 +43,18 @@ def reference_x_c(path):
 def main(argv):
     if len(argv) < 3:
         sys.exit(__doc__)
-    references = {path: reference_x_c(path) for path in argv[2:]}
+    references = {os.path.realpath(path): reference_x_c(path) for path in argv[2:]}
     for path, x_c in references.items():
         print(f"{path}: reference x_c {x_c:.4f}")
     groups = {}
     with open(argv[1], newline="", encoding="utf-8") as f:
         for row in csv.DictReader(f):
-            if row["dense"] in references and row["accepted"] == "1":
-                error = float(row["x_c"]) - references[row["dense"]]
+            dense = os.path.realpath(row["dense"])
+            if dense in references and row["accepted"] == "1":
+                error = float(row["x_c"]) - references[dense]
                 groups.setdefault((int(row["spacing"]), row["kind"]), []).append((error, float(row["x_c_sd"])))
+    if not groups:
+        sys.exit(f"{argv[1]}: no accepted analysis of the named curves; name the dense files as the table does")
     print("| rows every | kind | accepted | x_c error mean | rms | within its sd |")
     print("|---|---|---|---|---|---|")
     for (spacing, kind), values in sorted(groups.items()):

@@ -728,12 +728,16 @@ void check_peaks(const Grid& g, std::size_t phase, std::optional<std::size_t> co
                "force peak not pronounced: it rises less than {:g} % of F_c above the curve on either side",
                100.0 * rules.min_prominence));
   } else {
-    // The collapse's filtered start, held at the loading's end (filter_either_side), is no maximum.
-    const auto collapse_start = [&](std::size_t k) {
-      return collapse_onset && k > *collapse_onset && k <= *collapse_onset + edge_samples(r.filter);
+    // The collapse's filtered start is held at the loading's end (filter_either_side): a maximum found
+    // there, where a flat run ends, is the loading's last sample.
+    const std::size_t held =
+        collapse_onset ? held_collapse_samples(r.filter, *collapse_onset, r.filtered_force.size()) : 0;
+    const auto loading_sample = [&](std::size_t k) {
+      return held > 0 && k > *collapse_onset && k <= *collapse_onset + held ? *collapse_onset : k;
     };
-    for (std::size_t k : maxima) {
-      if (k != force_top && !collapse_start(k) && r.filtered_force[k] >= rules.competing_maximum * F_top) {
+    for (std::size_t index : maxima) {
+      const std::size_t k = loading_sample(index);
+      if (k != force_top && r.filtered_force[k] >= rules.competing_maximum * F_top) {
         reject(r,
                fmt::format(
                    "several force maxima of similar height (x = {:.6g} and x = {:.6g} {}): x_c is ambiguous",
@@ -785,10 +789,12 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   // onset. There they keep their fitted values, the half shift still counted in their sd.
   const bool x_c_at_cut =
       r.collapse_onset &&
-      r.force_peak->x > *r.collapse_onset - static_cast<double>(edge_samples(r.filter)) * (g.xs[1] - g.xs[0]);
-  const auto interval = [&](double estimate, double (*of)(const PeakValues&), bool correct_bias = true) {
-    return bootstrap_interval(estimate, replicate_values(boot.replicates, of), correct_bias);
+      r.force_peak->x > *r.collapse_onset - static_cast<double>(edge_samples(r.filter)) * r.step;
+  const auto interval = [&](double estimate, double (*of)(const PeakValues&), double kept_bias = 0.0) {
+    return bootstrap_interval(estimate, replicate_values(boot.replicates, of), kept_bias);
   };
+  const auto x_c_of = [](const PeakValues& v) { return v.x_c; };
+  const double x_c_cut_bias = x_c_at_cut ? interval(values.x_c, x_c_of).bias : 0.0;
   const auto shift =
       smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
   // The fit's own error estimated on the data carries the data's noise too; the replicates' spread
@@ -801,11 +807,8 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   r.peak_fit_error = {
       .x_c = fit_error(values.x_c_fit_error, [](const PeakValues& v) { return v.x_c_fit_error; }),
       .x_p = fit_error(values.x_p_fit_error, [](const PeakValues& v) { return v.x_p_fit_error; })};
-  const auto x_c =
-      add_systematic(add_systematic(interval(
-                                        values.x_c, [](const PeakValues& v) { return v.x_c; }, !x_c_at_cut),
-                                    shift.x_c),
-                     r.peak_fit_error.x_c);
+  const auto x_c = add_systematic(add_systematic(interval(values.x_c, x_c_of, x_c_cut_bias), shift.x_c),
+                                  r.peak_fit_error.x_c);
   const auto F_c = interval(values.F_c, [](const PeakValues& v) { return v.F_c; });
   const auto x_p = add_systematic(
       add_systematic(interval(values.x_p, [](const PeakValues& v) { return v.x_p; }), shift.x_p),
@@ -823,9 +826,10 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
     const auto ratio = interval(energy_ratio_of(values), energy_ratio_of);  // bias-corrected like the rest
     r.A_r = measured(ratio.estimate, ratio.sd, "1");
   }
+  // δ_x at the cut keeps x_c's shift uncorrected, as x_c does, and takes x_p's half: δ_x = x_c − x_p.
   const auto direct = add_systematic(
       interval(
-          values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }, !x_c_at_cut),
+          values.x_c - values.x_p, [](const PeakValues& v) { return v.x_c - v.x_p; }, x_c_cut_bias),
       shift.x_c - shift.x_p);
   r.quiet = is_quiet(run.noise, r);
   r.delta_x_direct = measured(direct.estimate, direct.sd, r.strain_unit);
@@ -865,9 +869,9 @@ void mark_unchecked_cases(AnalysisResult& r) {
     r.warnings.push_back(fmt::format(
         "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered apart from "
         "the loading; the intervals of x_c, x_p and delta_x are the bootstrap's own, not calibrated on such "
-        "curves (on curves with known answers, held-out 30, the 68 % interval of delta_x covered 67 % of the "
-        "brittle ones that came apart within 1.1 x_c and 79-84 % beyond, and 50-56 % of those that ring and "
-        "come apart as a run does, 72 % at single samples every 400 steps; docs/analysis.md, \"x_c of a "
+        "curves (on curves with known answers, held-out 30, the 68 % interval of delta_x covered 61 % of the "
+        "brittle ones that came apart within 1.1 x_c and 79-83 % beyond, and 47-56 % of those that ring and "
+        "come apart as a run does, 71 % at single samples every 400 steps; docs/analysis.md, \"x_c of a "
         "loading cut by a collapse\")",
         *r.collapse_onset, r.strain_unit));
   }

@@ -297,7 +297,7 @@ BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const d
   return result;
 }
 
-BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates, bool correct_bias) {
+BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates, double kept_bias) {
   BootstrapInterval s;
   s.estimate = estimate;
   if (replicates.size() < 2) {
@@ -316,7 +316,7 @@ BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replic
   // replicates are smoothed twice (the data once, then again with their noise), so their shift
   // over-states the smoothing bias of the data, and how much is not known (docs/analysis.md). On
   // finite bundles the bias has the wrong sign, yet leaving it in failed its check (held-out 17).
-  if (correct_bias) s.estimate = estimate - 0.5 * s.bias;
+  s.estimate = estimate - 0.5 * (s.bias - kept_bias);
   s.sd = std::hypot(spread, 0.5 * s.bias);
   // Replicates that all agree (a window the noise model reads as noise-free) carry no shape: the
   // interval is then the normal one of the bias's half, not zero wide.

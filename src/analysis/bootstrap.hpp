@@ -132,16 +132,16 @@ BootstrapResult bootstrap_peaks(std::span<const double> force, std::span<const d
 // estimate, its sd (the replicates' spread and the other half of the bias, in quadrature), and
 // equal-tailed 68 % and 95 % intervals from the replicates' quantiles around their median (the
 // basic bootstrap, which keeps a skewed spread), placed on the estimate and widened by the same
-// factor as the sd. Without `correct_bias` the estimate stays where it is (the half bias still in the
-// sd): for a maximum on the loading's cut end, from which every replicate can only fall back.
+// factor as the sd. `kept_bias` is a part of the replicates' mean shift that is not the smoothing's and
+// is left uncorrected (still counted in the sd): x_c's at a collapse's cut, which no replicate's
+// maximum passes.
 struct BootstrapInterval {
   double estimate = 0.0, sd = 0.0;
   double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;
   double bias = 0.0;    // mean of the replicates minus the uncorrected estimate
   double spread = 0.0;  // sd of the replicates
 };
-BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates,
-                                     bool correct_bias = true);
+BootstrapInterval bootstrap_interval(double estimate, std::vector<double> replicates, double kept_bias = 0.0);
 
 // Adds a systematic error `shift` (strain units) to an interval: sd in quadrature, the intervals
 // widened about the estimate by the same factor (or, with no spread at all, ±shift and ±1.96 shift).

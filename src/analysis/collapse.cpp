@@ -40,9 +40,14 @@ void filter_either_side(FilterSettings filter, std::span<const double> raw, std:
   std::copy(smooth.begin(), smooth.end(), filtered.begin() + static_cast<std::ptrdiff_t>(onset + 1));
   // The collapse's filtered start follows its padding, pinned to its first noisy sample: above the
   // loading's end it would stand as a maximum of the curve where the sample is coming apart.
-  const std::size_t edge = std::min(edge_samples(filter), collapse.size());
-  for (std::size_t i = onset + 1; i <= onset + edge; ++i)
+  const std::size_t held = held_collapse_samples(filter, onset, raw.size());
+  for (std::size_t i = onset + 1; i <= onset + held; ++i)
     filtered[i] = std::min(filtered[i], filtered[onset]);
+}
+
+std::size_t held_collapse_samples(const FilterSettings& filter, std::size_t onset, std::size_t size) {
+  if (onset + 1 < minimum_samples(filter) || onset + 1 >= size) return 0;
+  return std::min(edge_samples(filter), size - onset - 1);
 }
 
 }  // namespace rupture::analysis

@@ -38,10 +38,15 @@ std::size_t collapse_width(std::size_t force_top);
 
 // The loading and the collapse filtered each on its own, split at the onset, so that the drop's
 // response does not reach back into the loading. The loading's cut end is continued by its trend
-// (filter_continuing_end), the collapse's ends padded as usual, its first edge_samples() held at
-// most at the loading's filtered end. A piece too short for the filter
-// stays raw; a loading too short leaves the whole record's filtering.
+// (filter_continuing_end), the collapse's ends padded as usual; the collapse's first
+// held_collapse_samples() are then held at most at the loading's filtered end. A collapse too short
+// for the filter stays raw (its start held too); a loading too short leaves the whole record's
+// filtering.
 void filter_either_side(FilterSettings filter, std::span<const double> raw, std::size_t onset,
                         std::vector<double>& filtered);
+
+// How many samples after the onset filter_either_side holds at the loading's filtered end: one filter
+// edge, fewer where the record ends sooner, none where the loading was too short to filter apart.
+std::size_t held_collapse_samples(const FilterSettings& filter, std::size_t onset, std::size_t size);
 
 }  // namespace rupture::analysis

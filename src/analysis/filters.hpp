@@ -88,14 +88,14 @@ bool chooses_own_strength(const FilterSettings& settings);
 
 // The filter of a piece cut short at its end (the loading before a sharp collapse, analysis.cpp): the
 // piece is continued past its last sample, for twice edge_samples() samples, by the tangent at its
-// end of the least-squares quadratic through its last three edges, and filtered with that
-// continuation. The plain padding, an odd extension about the last sample, pins the filtered end to
-// that one noisy sample and flips the curve's bend beyond it; a straight line through the last edge
-// starts above a concave end and rises at the slope of its middle, so a top cut just past its
-// maximum peaked at the cut. At a cut a few percent past the force peak that edge reaches x_c and x_p
-// (docs/analysis.md, "The loading's cut end", "x_c at the cut"). Where the filter has an edge of fewer than 3
-// samples or the piece is shorter than twice its edge, the plain filter. The settings' strength must be
-// chosen (not automatic).
+// end of the least-squares quadratic through its last three edges (the whole piece where it is
+// shorter), and filtered with that continuation. The plain padding, an odd extension about the last
+// sample, pins the filtered end to that one noisy sample and flips the curve's bend beyond it; a
+// straight line through the last edge starts above a concave end and rises at the slope of its
+// middle, so a top cut just past its maximum peaked at the cut. At a cut a few percent past the force
+// peak that edge reaches x_c and x_p (docs/analysis.md, "The loading's cut end", "x_c of a loading
+// cut by a collapse"). Where the filter has an edge of fewer than 3 samples or the piece is shorter
+// than twice its edge, the plain filter. The settings' strength must be chosen (not automatic).
 std::vector<double> filter_continuing_end(const FilterSettings& settings, std::span<const double> y);
 
 // Caps the smoothing so that the filter averages over no more than `longest_period` samples (a

@@ -1102,10 +1102,9 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
 // Cut 5 % past the force peak (the default study's run breaks 7 % past it), the loading's filtered end
 // reaches both maxima. The plain padding pinned it to the last noisy sample before the drop and flipped
 // the curve's bend there: x_p 0.55 on average over 20 seeds where it is 0.49, δ_x 26 % short. Continued
-// by its end's tangent (filter_continuing_end), over 20 seeds δ_x's mean error is -5.4 % (rms 9.4 %;
+// by its end's tangent (filter_continuing_end), over 20 seeds δ_x's mean error is -4.2 % (rms 8.9 %;
 // -7.2 % and 9.8 % with the straight line), 19 are accepted (seed 6 here loses a maximum in 11 of 200
-// replicates, the limit is 10) and δ_x's 95 % interval holds the truth on 18 of them (seed 1 here misses
-// by 1 % of δ_x).
+// replicates, the limit is 10) and δ_x's 95 % interval holds the truth on all 19.
 TEST(AnalyzeCurve, TheLoadingsCutEndLeavesThePrecursorWhereItIs) {
   const double x_c = std::cbrt(1.0 / 3.0), x_p = weibull3_x_p();
   int accepted = 0, held = 0;

@@ -189,8 +189,8 @@ TEST(CutEnd, FilteredEndFollowsTheTrendNotTheLastSample) {
     continued_sum += continued;
   }
   const double plain_sd = std::sqrt(plain_square / seeds), continued_sd = std::sqrt(continued_square / seeds);
-  // Measured: 0.60 (the end follows the last sample, sd 1) against 0.42 (the trend line's end through
-  // 20 samples, whose sd is sqrt(0.186)).
+  // Measured: 0.60 (the end follows the last sample, sd 1) against 0.39 (the end of the quadratic
+  // through the last 60 samples, whose sd is sqrt(9/60) = 0.39; the line through 20 gave 0.42).
   EXPECT_GT(plain_sd, 0.5);
   EXPECT_LT(continued_sd, 0.8 * plain_sd);
   EXPECT_LT(std::abs(continued_sum / seeds), 3.0 * continued_sd / std::sqrt(static_cast<double>(seeds)));
@@ -201,7 +201,8 @@ TEST(CutEnd, FilteredEndFollowsTheTrendNotTheLastSample) {
 // keeps its maximum on the top's sample and its end within 3·10⁻³ of the curve. The least-squares
 // line through the last edge, continued, started above the concave end and rose at the slope of the
 // window's middle: the filtered end 0.0065-0.0075 high and, cut 5 and 10 samples past the top, the
-// maximum 5 and 2 samples late (at the end).
+// maximum 5 and 2 samples late (at the end). A parabola is any quadratic's own shape, so this tells the
+// tangent from the line, not how many edges the quadratic spans.
 TEST(CutEnd, AConcaveTopCutPastItsMaximumKeepsItsMaximum) {
   FilterSettings settings;
   settings.cutoff = 0.05;

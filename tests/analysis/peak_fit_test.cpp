@@ -26,7 +26,7 @@ Sampled sampled(Curve curve, double step, double end) {
   return s;
 }
 
-// A cubic is fitted exactly, so its maximum comes out to rounding wherever the window falls.
+// A cubic is fitted exactly, so its maximum comes out to rounding.
 TEST(PeakFit, FindsTheMaximumOfACubic) {
   const auto cubic = [](double x) {
     return 1.0 - (x - 0.5) * (x - 0.5) + 0.3 * (x - 0.5) * (x - 0.5) * (x - 0.5);
