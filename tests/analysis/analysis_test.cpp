@@ -1120,6 +1120,8 @@ TEST(AnalyzeCurve, TheLoadingsCutEndLeavesThePrecursorWhereItIs) {
     EXPECT_NEAR(r.x_p->value, x_p, 0.07 * x_p) << seed;
     EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;
     EXPECT_LE(r.x_c->value, *r.collapse_onset) << seed;
+    // At the cut x_c keeps its bootstrap shift and x_p takes its half correction; δ_x follows both.
+    EXPECT_NEAR(r.delta_x->value, r.x_c->value - r.x_p->value, 1e-12) << seed;
     EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.3 * (x_c - x_p)) << seed;
     held += r.delay->ci95_low < x_c - x_p && r.delay->ci95_high > x_c - x_p;
   }
