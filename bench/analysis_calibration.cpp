@@ -8,19 +8,21 @@
 // groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do; white-between:
 // white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and 0.14 %; brittle:
 // curves cut by a sharp collapse at 1.03-1.5 x_c; run-like: bundles recorded as rupture run records a
-// tissue, F ringing, rows as single samples or means over their interval; calibration_set.hpp]
+// tissue, F ringing, rows as single samples or means over their interval; dem-like: the same with F sagging
+// from its peak to a collapse at 1.02-1.06 x_c, as a tissue's does; calibration_set.hpp]
 // [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
 // stationary-walk: one step along the curve]. The per-curve file holds each curve's truth, estimates,
 // intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
 // and the noise the analysis measured on F and E_e as a share of their maxima, with its white and random-walk
 // parts (per sample and per step) apart (files before held-out 22 lack the first two columns, before
-// held-out-22-edge the other four). `noise` is the kind whose factors the intervals take
-// (scored_as_random_walk), `noise_read` the kind read over the whole record (reads_random_walk; from held-out
-// 24 on; before, `noise` was that), from which bench/interval_scales.py learns the per-level interval scales
-// (on the tuning set) and checks them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed
-// before the change it checks and run once for it; docs/analysis.md, "Calibration", lists them in the order
-// they were used (held-out 6 checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a
-// noise-kind reading, held-out 9 and 10 the energy-rate search's edge).
+// held-out-22-edge the other four, before the dem-like groups the maxima's smoothing shifts, last). `noise`
+// is the kind whose factors the intervals take (scored_as_random_walk), `noise_read` the kind read over the
+// whole record (reads_random_walk; from held-out 24 on; before, `noise` was that), from which
+// bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on a
+// held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run once
+// for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6 checks the
+// white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind reading, held-out 9 and 10 the
+// energy-rate search's edge).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -54,10 +56,10 @@ int main(int argc, char** argv) {
   }
   if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed" &&
       kinds != "white-between" && kinds != "white-low" && kinds != "white-low-between" &&
-      kinds != "brittle" && kinds != "run-like") {
+      kinds != "brittle" && kinds != "run-like" && kinds != "dem-like") {
     std::fprintf(stderr,
                  "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed, "
-                 "white-between, white-low, white-low-between, brittle or run-like\n",
+                 "white-between, white-low, white-low-between, brittle, run-like or dem-like\n",
                  kinds.c_str());
     return 2;
   }
@@ -74,7 +76,7 @@ int main(int argc, char** argv) {
                  "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
                  "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
                  "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share,"
-                 "noise_read,collapse_cut,collapse_onset\n";
+                 "noise_read,collapse_cut,collapse_onset,x_c_smoothing_shift,x_p_smoothing_shift\n";
     per_curve.precision(10);
   }
   AnalysisOptions
@@ -91,6 +93,7 @@ int main(int argc, char** argv) {
                       : kinds == "white-low-between" ? low_between_noise_groups()
                       : kinds == "brittle"           ? brittle_noise_groups()
                       : kinds == "run-like"          ? run_like_noise_groups()
+                      : kinds == "dem-like"          ? dem_like_noise_groups()
                                                      : noise_groups();
   for (const auto& g : groups) {
     if ((kinds == "white" && g.fibers > 0) || (kinds == "bundle" && g.fibers == 0)) continue;
@@ -102,7 +105,7 @@ int main(int argc, char** argv) {
       const auto seed = curve_case.seed;
       const Curve c = curve_case.draw(g);
       const std::size_t rows = c.strain.size();
-      const Truth t = truth(s);
+      const Truth t = run_like_truth(s, seed, g.run);
       const auto r = analyze_curve(c, unscaled);
       if (per_curve.is_open()) {
         per_curve << which << ',' << g.name << ",\"" << s.name << "\"," << rows << ',' << seed << ','
@@ -128,9 +131,14 @@ int main(int argc, char** argv) {
         }
         per_curve << ',' << noise_name(reads_random_walk(r)) << ',';
         if (g.collapse) per_curve << collapse_cut(s, seed);
-        if (g.run.collapse) per_curve << run_like_cut(s, seed);
+        if (g.run.collapse) per_curve << run_like_cut(s, seed, g.run.sag);
         per_curve << ',';
         if (r.collapse_onset) per_curve << *r.collapse_onset;
+        per_curve << ',';
+        if (r.accepted && r.delay)
+          per_curve << r.smoothing_shift.x_c << ',' << r.smoothing_shift.x_p;
+        else
+          per_curve << ',';
         per_curve << '\n' << std::flush;
       }
       if (!r.accepted || !r.delay) {

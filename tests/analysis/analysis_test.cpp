@@ -908,6 +908,49 @@ TEST(CalibrationSets, ARunLikeCurveHasTheRunsRowsItsRingingAndItsCollapse) {
   EXPECT_NEAR(tail, 0.07 * apart.force[last_before], 0.02 * t.F_c) << "F falls to 7 % and rings about it";
 }
 
+// The dem-like groups' curves (calibration_set.hpp, run_like_sag): the same fibres as a run-like curve
+// up to the kink; past it extra breaks at the drawn rate (a Poisson count) make the mean's maximum the
+// kink, F sag by 1-9 % to the collapse, and leave ℰ's maximum the law's.
+TEST(CalibrationSets, ASaggingRunLikeCurveTopsOutAtItsKinkAndSagsToTheCollapse) {
+  using namespace calibration;
+  const Shape s = weibull(3);
+  const Truth law = truth(s);
+  constexpr std::uint64_t seed = 7;
+  const RunRows sagging{1, false, 0.0, true, true}, plain{1, false, 0.0, false, false};
+  const Sag sag = run_like_sag(s, seed);
+  EXPECT_GE(sag.kink, 0.82 * law.x_c);
+  EXPECT_LE(sag.kink, 0.94 * law.x_c);
+  EXPECT_GE(sag.kink, law.x_p + 0.05 * law.x_c);
+  EXPECT_GE(sag.cut, 1.02 * sag.kink);
+  EXPECT_LE(sag.cut, 1.06 * sag.kink);
+  EXPECT_DOUBLE_EQ(run_like_cut(s, seed, true), sag.cut);
+
+  const Truth t = run_like_truth(s, seed, sagging);
+  EXPECT_NEAR(t.x_c, sag.kink, 1e-6 * law.x_c) << "the mean's force tops out at the kink";
+  EXPECT_NEAR(t.x_p, law.x_p, 1e-6 * law.x_p) << "ℰ's maximum stays the law's";
+  const double sag_at_cut = 1.0 - sag.cut * sagging_intact(s, sag, sag.cut) / t.F_c;
+  EXPECT_GT(sag_at_cut, 0.01);
+  EXPECT_LT(sag_at_cut, 0.09);
+
+  // Every step, no ringing: the same fibres as the plain curve up to the kink; past it the extra
+  // breaks (E_e = x² I / 2 gives the intact share I) follow the drawn rate within their Poisson sd.
+  const Curve c = run_like_curve(s, 10000, sagging, seed);
+  const Curve same = run_like_curve(s, 10000, plain, seed);
+  std::size_t kink = 0, last = 0;
+  while (c.strain[kink + 1] <= sag.kink) ++kink;
+  while (c.strain[last + 1] < sag.cut) ++last;
+  for (std::size_t i = 0; i <= kink; ++i) ASSERT_EQ(c.force[i], same.force[i]) << i;
+  const auto intact = [](const Curve& curve, std::size_t i) {
+    return 2.0 * curve.energy[i] / (curve.strain[i] * curve.strain[i]);
+  };
+  const double extra = 10000.0 * (intact(same, last) - intact(c, last));
+  const double expected = sag.rate * 10000.0 * intact(same, kink) * (c.strain[last] - sag.kink);
+  EXPECT_NEAR(extra, expected, 4.0 * std::sqrt(expected));
+  const auto top = std::max_element(c.force.begin(), c.force.end()) - c.force.begin();
+  EXPECT_NEAR(c.strain[std::size_t(top)], t.x_c, 0.02 * t.x_c) << "the fibres' own curve tops out there too";
+  EXPECT_LT(c.force[last], c.force[std::size_t(top)]);
+}
+
 // The sets bench/analysis_calibration runs by name: every held-out row has its six shapes, a name
 // gives all its rows, and no shape is shared with the tuning set or another row (a held-out set that
 // repeats a shape checks nothing new); an unknown name gives no set. One repeat is on record:

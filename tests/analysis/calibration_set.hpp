@@ -343,12 +343,65 @@ struct RunRows {
   bool means = false;     // each row the means over its interval (rupture run's *_mean columns)
   double ring = 0.0;      // rms of F's ringing over [0.7, 0.95] x_c, fraction of F_c
   bool collapse = false;  // the sample comes apart at 1.03-1.2 x_c (drawn per curve)
+  bool sag = false;       // with collapse: F sags from x_c to a collapse at 1.02-1.06 x_c (run_like_sag)
 };
 
-// Where run_like_curve's sample comes apart: b x_c, b drawn in [1.03, 1.2].
-inline double run_like_cut(const Shape& s, std::uint64_t seed) {
+// How a tissue's force tops out (the study's five dense runs, docs/analysis.md): F rises to a kink,
+// 0.3-1 F_c/x_c steep on its left (a bundle's top is flat there), and sags 2-5 % to the collapse at
+// 1.03-1.06 x_c while E_e still rises to just before it. A sagging run-like curve loses, beyond the
+// bundle's own breaks, fibres at a steady rate in strain from a kink at `kink` on (a Poisson count of
+// breaks a step, each kicking F's ringing as the bundle's own breaks do): the rate that holds F level
+// there, plus `rate` times the fibres intact at the kink over x_c. The kink is drawn in [0.82, 0.94] of
+// the law's x_c (at least 0.05 x_c past x_p, so that ℰ's maximum stays the law's), rate in [0.5, 1.5],
+// and the collapse at b times the kink, b in [1.02, 1.06]: the sag there is 1-9 %.
+struct Sag {
+  double kink = 0.0;  // strain where the extra breaking starts: the curve's x_c
+  double rate = 0.0;  // extra breaks per unit strain, share of the fibres intact at the kink
+  double cut = 0.0;   // strain where the sample comes apart
+};
+inline Sag run_like_sag(const Shape& s, std::uint64_t seed) {
+  Rng rng(seed, RandomStream::analysis_noise, 13);
+  const double x_c = argmax([&](double x) { return x * (1.0 - s.cdf(x)); }, s.x_end);
+  const double x_p = argmax([&](double x) { return x * (1.0 - s.cdf(x)) - 0.5 * x * x * s.pdf(x); }, s.x_end);
+  const double kink = std::max(rng.uniform(0.82, 0.94) * x_c, std::min(x_p + 0.05 * x_c, x_c));
+  const double survive = 1.0 - s.cdf(kink);
+  // F = x I with I' = -pdf - rate_total I(kink): level at the kink for rate_total = 1/kink - pdf/I.
+  const double level = std::max(0.0, 1.0 / kink - s.pdf(kink) / survive);
+  const double rate = level + rng.uniform(0.5, 1.5) / x_c;
+  return {kink, rate, rng.uniform(1.02, 1.06) * kink};
+}
+
+// The intact share of a sagging run-like curve's mean (run_like_sag) at strain x.
+inline double sagging_intact(const Shape& s, const Sag& sag, double x) {
+  const double extra = x > sag.kink ? sag.rate * (1.0 - s.cdf(sag.kink)) * (x - sag.kink) : 0.0;
+  return 1.0 - s.cdf(x) - extra;
+}
+
+// Where run_like_curve's sample comes apart: b x_c, b drawn in [1.03, 1.2] (with a sag: run_like_sag).
+inline double run_like_cut(const Shape& s, std::uint64_t seed, bool sag = false) {
+  if (sag) return run_like_sag(s, seed).cut;
   Rng rng(seed, RandomStream::analysis_noise, 12);
   return rng.uniform(1.03, 1.2) * truth(s).x_c;
+}
+
+// The truth of a run-like curve: the law's, or with a sag that of its mean up to the collapse.
+inline Truth run_like_truth(const Shape& s, std::uint64_t seed, const RunRows& rows) {
+  if (!rows.sag) return truth(s);
+  const Sag sag = run_like_sag(s, seed);
+  const auto force = [&](double x) { return x * sagging_intact(s, sag, x); };
+  const auto energy = [&](double x) { return 0.5 * x * x * sagging_intact(s, sag, x); };
+  const auto rate = [&](double x) {
+    const double slope = -s.pdf(x) - (x > sag.kink ? sag.rate * (1.0 - s.cdf(sag.kink)) : 0.0);
+    return force(x) + 0.5 * x * x * slope;
+  };
+  Truth t;
+  t.x_c = argmax(force, sag.cut);
+  t.x_p = argmax(rate, sag.cut);
+  t.x_m = argmax(energy, sag.cut);
+  t.F_c = force(t.x_c);
+  t.E_max = energy(t.x_m);
+  t.Erate_max = rate(t.x_p);
+  return t;
 }
 
 // The tissue's lowest mode as a damped oscillator sampled once a step (period `period` steps, quality
@@ -373,7 +426,12 @@ inline Curve run_like_steps(const Shape& s, std::size_t fibers, const RunRows& r
   Rng rng(seed, RandomStream::analysis_noise, 11);
   const StepOscillator mode(rng.uniform(250.0, 450.0));
   const auto t = truth(s);
-  const double cut = rows.collapse ? run_like_cut(s, seed) : 2.0 * s.x_end;
+  const double cut = rows.collapse ? run_like_cut(s, seed, rows.sag) : 2.0 * s.x_end;
+  // The sag's breaks: a Poisson process in their expected count, arrivals one exponential apart.
+  const Sag sag = rows.sag ? run_like_sag(s, seed) : Sag{2.0 * s.x_end, 0.0, 0.0};
+  Rng sag_rng(seed, RandomStream::analysis_noise, 14);
+  double sag_expected = 0.0, sag_next = -std::log(sag_rng.uniform01_open_zero()), sag_broken = 0.0;
+  std::size_t intact_at_kink = 0;
   Curve c;
   c.strain_unit = c.force_unit = c.energy_unit = "1";
   auto &x = c.strain, &force = c.force, &energy = c.energy;
@@ -388,7 +446,16 @@ inline Curve run_like_steps(const Shape& s, std::size_t fibers, const RunRows& r
     double kick = 0.0;
     if (x[k] < cut) {
       for (; broken < thresholds.size() && thresholds[broken] <= x[k]; ++broken) kick += rng.normal();
-      const double intact = 1.0 - static_cast<double>(broken) / static_cast<double>(thresholds.size());
+      if (x[k] > sag.kink) {
+        if (intact_at_kink == 0) intact_at_kink = thresholds.size() - broken;
+        sag_expected += sag.rate * double(intact_at_kink) * (x[k] - x[k - 1]);
+        for (; sag_next <= sag_expected; sag_next -= std::log(sag_rng.uniform01_open_zero())) {
+          sag_broken += 1.0;
+          kick += sag_rng.normal();
+        }
+      }
+      const double intact =
+          1.0 - (static_cast<double>(broken) + sag_broken) / static_cast<double>(thresholds.size());
       force[k] = x[k] * intact;
       energy[k] = 0.5 * x[k] * x[k] * intact;
     } else {
@@ -537,6 +604,17 @@ inline std::vector<NoiseGroup> run_like_noise_groups() {
         groups.push_back({"run-like rows every " + std::to_string(every) + (means ? " means" : " samples") +
                               (collapse ? " collapse" : ""),
                           0, 10000, 0.0, false, RunRows{every, means, 0.008, collapse}});
+  return groups;
+}
+
+// Run-like curves whose force sags before the collapse as a tissue's does (run_like_sag): rows every
+// 100, 200 and 400 steps, single samples or means.
+inline std::vector<NoiseGroup> dem_like_noise_groups() {
+  std::vector<NoiseGroup> groups;
+  for (const std::size_t every : {100, 200, 400})
+    for (const bool means : {false, true})
+      groups.push_back({"dem-like rows every " + std::to_string(every) + (means ? " means" : " samples"), 0,
+                        10000, 0.0, false, RunRows{every, means, 0.008, true, true}});
   return groups;
 }
 
