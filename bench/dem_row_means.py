@@ -2,7 +2,7 @@
 """Single samples against means over the row's interval, on one DEM run (docs/analysis.md, "Where the
 rows fall").
 
-Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10] [SPACINGS=100,200,400] [TABLE.csv]
+Usage: dem_row_means.py RUPTURE DENSE_CURVES [BASE_STEPS=10] [SPACINGS=100,200,400] [TABLE.csv] [ANALYZE_OPTION...]
 
 DENSE_CURVES is a curves.csv written with a row every BASE_STEPS steps (`rupture run CONFIG --set
 output.interval=10`). From it, for rows every SPACINGS steps, five curves are built that start at five
@@ -17,7 +17,8 @@ the run's strain unit, the rejection), the header written where the file is new:
 "The bootstrap's noise read on the loading" takes the median sd and the rms over runs of δ_x's sd
 over the starts from such a table of five runs.
 The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
-samples. Standard library only.
+samples. Any further arguments go to every `rupture analyze` (e.g. `--force-top corner`). Standard library
+only.
 """
 import json
 import pathlib
@@ -34,6 +35,7 @@ def main(argv):
     base = int(argv[3]) if len(argv) > 3 else 10
     spacings = [int(v) for v in argv[4].split(",")] if len(argv) > 4 else [100, 200, 400]
     table = pathlib.Path(argv[5]) if len(argv) > 5 else None
+    analyze_options = argv[6:]
     if table and not table.exists():
         table.write_text("dense,spacing,kind,start,accepted,delta_x,delta_x_sd,x_p,x_p_sd,x_c,x_c_sd,rejection\n")
     lines = [line for line in dense.read_text().splitlines() if line and not line.startswith("#")]
@@ -52,7 +54,7 @@ def main(argv):
         def analyse(built, kind):
             curve.write_text("\n".join([means_header if kind == "mean" else header] +
                                        [",".join(repr(v) for v in row) for row in built]) + "\n")
-            subprocess.run([rupture, "analyze", str(curve), "-o", str(out)], capture_output=True)
+            subprocess.run([rupture, "analyze", str(curve), "-o", str(out), *analyze_options], capture_output=True)
             result = json.loads(out.read_text()) if out.exists() else {}
             delta = result.get("delta_x") or {}
             return (delta["value"], delta["sd"], bool(result.get("accepted"))) if "value" in delta else None, result

@@ -79,6 +79,14 @@ struct AcceptanceRules {
 enum class DelayMethod { fitted_maxima, shift_l1 };
 const char* to_string(DelayMethod method);
 
+// How the force tops out before a collapse, where x_c lies within the filter's edge of its onset:
+// smooth (the cubic over the filtered top, as everywhere) or at a corner (a DEM tissue's force turns at
+// its peak and sags to the collapse over fewer rows than the edge: x_c is the corner of two lines
+// fitted to the unfiltered rows there, fit_corner). The rows cannot tell the two apart under their
+// noise, so the choice is the user's (docs/analysis.md, "Known answers with a DEM-like top").
+enum class ForceTop { smooth, corner };
+const char* to_string(ForceTop top);
+
 struct AnalysisOptions {
   std::size_t max_samples = 20000;  // denser curves are block-averaged to this many samples (0 = never)
   FilterSettings filter;
@@ -86,6 +94,7 @@ struct AnalysisOptions {
   PeakFitOptions peak;
   DelayMethod delay_method = DelayMethod::fitted_maxima;
   DelayOptions delay;  // shift_l1 only
+  ForceTop force_top = ForceTop::smooth;
   BootstrapOptions uncertainty;
   AcceptanceRules acceptance;
   MechanismRules mechanism;

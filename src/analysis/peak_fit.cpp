@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 
 namespace rupture::analysis {
@@ -89,6 +90,75 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
   fit.x_error = half_width * std::sqrt(variance_scale * slope_gradient.dot(inverse * slope_gradient)) /
                 std::abs(curvature);
   fit.value_error = std::sqrt(variance_scale * value_gradient.dot(inverse * value_gradient));
+  return fit;
+}
+
+namespace {
+
+struct CornerLines {
+  double residual = 0.0;
+  Eigen::Vector3d coefficients;  // c, a, b
+};
+
+CornerLines corner_lines(std::span<const double> x, std::span<const double> y, double k) {
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Eigen::Vector3d basis(1.0, std::min(x[i] - k, 0.0), std::max(x[i] - k, 0.0));
+    normal += basis * basis.transpose();
+    right += basis * y[i];
+  }
+  CornerLines lines;
+  lines.coefficients = normal.ldlt().solve(right);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double fitted = lines.coefficients(0) + lines.coefficients(1) * std::min(x[i] - k, 0.0) +
+                          lines.coefficients(2) * std::max(x[i] - k, 0.0);
+    lines.residual += (y[i] - fitted) * (y[i] - fitted);
+  }
+  return lines;
+}
+
+}  // namespace
+
+PeakFit fit_corner(std::span<const double> x, std::span<const double> y) {
+  PeakFit fit;
+  constexpr std::size_t side = 3, between = 8;
+  if (x.size() < 2 * side + 1) {
+    fit.problem = fmt::format("only {} samples, a corner fit needs {}", x.size(), 2 * side + 1);
+    return fit;
+  }
+  fit.points = x.size();
+  fit.window_low = x.front();
+  fit.window_high = x.back();
+  // The residual is smooth in k between samples: a scan at an eighth of the spacing, then Brent's
+  // method within one scan step of the best.
+  const std::size_t intervals = x.size() - 2 * side + 1;
+  const double first = x[side - 1], last = x[x.size() - side];
+  const double scan = (last - first) / static_cast<double>(intervals * between);
+  double best_k = first, best_residual = corner_lines(x, y, first).residual;
+  for (std::size_t i = 1; i <= intervals * between; ++i) {
+    const double k = first + scan * static_cast<double>(i);
+    const double residual = corner_lines(x, y, k).residual;
+    if (residual < best_residual) {
+      best_residual = residual;
+      best_k = k;
+    }
+  }
+  const auto refined = boost::math::tools::brent_find_minima(
+      [&](double k) { return corner_lines(x, y, k).residual; }, std::max(first, best_k - scan),
+      std::min(last, best_k + scan), 40);
+  const double k = refined.second < best_residual ? refined.first : best_k;
+  const CornerLines lines = corner_lines(x, y, k);
+  if (!(lines.coefficients(1) > 0.0 && lines.coefficients(2) < 0.0)) {
+    fit.problem = "the two lines do not meet at a maximum";
+    return fit;
+  }
+  fit.found = true;
+  fit.corner = true;
+  fit.x = k;
+  fit.value = lines.coefficients(0);
+  fit.index = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), k) - x.begin());
+  if (fit.index > 0 && k - x[fit.index - 1] < x[fit.index] - k) --fit.index;
   return fit;
 }
 

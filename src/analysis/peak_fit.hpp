@@ -29,6 +29,7 @@ struct PeakFit {
   std::size_t index = 0;                       // index of the largest sample
   bool cut_short = false;  // not found because the data ends too soon: too few samples, or the largest
                            // within min_side of the end
+  bool corner = false;     // x and value from fit_corner, not the cubic
 };
 
 // Fits a cubic to (x, y) around the largest y. `noise` is the per-sample standard deviation of the
@@ -38,6 +39,13 @@ struct PeakFit {
 // the problem's text.
 PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double noise, double correlation,
                  const PeakFitOptions& options = {}, std::string_view x_unit = {});
+
+// Fits a corner to (x, y): the continuous two-line least-squares fit y = c + a min(x - k, 0) +
+// b max(x - k, 0), its corner k sought over the interior (at least three samples on each side).
+// Found where the left line rises and the right one falls: x = k, value = c, index the sample nearest
+// k, `corner` set. For a maximum where the curve turns at an angle, which a cubic over it puts on the
+// shallower side (docs/analysis.md, "Known answers with a DEM-like top").
+PeakFit fit_corner(std::span<const double> x, std::span<const double> y);
 
 // Indices of the local maxima of y whose topographic prominence (height above the higher of the
 // two lowest points separating it from any higher sample, or from the ends) is at least

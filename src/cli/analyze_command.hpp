@@ -17,6 +17,7 @@ struct AnalyzeOptions {
   analysis::ColumnChoice columns;
   std::string filter = "butterworth";
   std::string delay_method = "fitted-maxima";
+  std::string force_top = "smooth";
   analysis::AnalysisOptions analysis;
 };
 

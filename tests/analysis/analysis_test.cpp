@@ -1261,6 +1261,36 @@ TEST(AnalyzeCurve, TheForcePeakOfALoadingCutJustPastItIsNotPulledIntoTheCollapse
   EXPECT_LE(far_early, 2);
 }
 
+// Dem-like curves (a force that rises to a corner and sags to the collapse, as a tissue's does; rows
+// every 200 steps as means): the cubic over the filtered top puts x_c early (docs/analysis.md, "Known
+// answers with a DEM-like top"); ForceTop::corner takes the corner of two lines on the rows there, and
+// says so in the fit.
+TEST(AnalyzeCurve, AForceThatTurnsAtACornerKeepsX_cThereWithTheCornerForm) {
+  using namespace calibration;
+  const auto set = calibration_set("tuning");
+  const NoiseGroup group = dem_like_noise_groups()[3];
+  ASSERT_EQ(group.name, "dem-like rows every 200 means");
+  AnalysisOptions corner;
+  corner.force_top = ForceTop::corner;
+  double smooth_sum = 0.0, corner_sum = 0.0;
+  int corners = 0;
+  for (int k = 0; k < 8; ++k) {
+    const auto curve_case = CalibrationCase::at(set, k);
+    const Curve c = curve_case.draw(group);
+    const double x_c = run_like_truth(curve_case.shape, curve_case.seed, group.run).x_c;
+    const auto smooth_result = analyze_curve(c, {}), corner_result = analyze_curve(c, corner);
+    ASSERT_TRUE(smooth_result.x_c && corner_result.x_c) << k;
+    EXPECT_FALSE(smooth_result.force_peak->corner);
+    if (!corner_result.force_peak->corner) continue;  // no collapse found, or x_c clear of it
+    smooth_sum += (smooth_result.x_c->value - x_c) / x_c;
+    corner_sum += (corner_result.x_c->value - x_c) / x_c;
+    ++corners;
+  }
+  ASSERT_GE(corners, 6);
+  EXPECT_LT(smooth_sum / corners, -0.01) << "the cubic over the corner is early";
+  EXPECT_LT(std::abs(corner_sum / corners), 0.5 * std::abs(smooth_sum / corners));
+}
+
 // A bundle of Weibull k = 10 fibres (x_p = 0.660, x_c = 0.794: ℰ peaks close to F) that comes apart at
 // 1.02 x_c, F falling by e a row towards 7 % of its value and E_e towards 30 %, `rows_to_peak` rows up to
 // x_c, 0.5 % white noise on F and 0.1 % on E_e: a DEM run's rows every 1,000 steps.

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "analysis/analysis.hpp"
+#include "calibration_set.hpp"
 #include "fbm/power_law.hpp"
 #include "support/json_convention.hpp"
 #include "support/tool.hpp"
@@ -77,6 +78,34 @@ TEST(AnalyzeCli, ACurveCutByACollapseGetsNoNoiseLevelNote) {
   EXPECT_NE(r.err.find("collapse too sharp for the filter"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("factors are calibrated for"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("not calibrated"), std::string::npos) << r.out;
+}
+
+// --force-top corner: recorded with the inputs, the force's fit named as a corner, x_c moved onto it
+// (a dem-like curve: Weibull k = 3, x_c 0.6118, the cubic's 0.603); an unknown form is refused.
+TEST(AnalyzeCli, ForceTopCornerIsRecordedAndMovesX_cOntoTheCorner) {
+  using namespace calibration;
+  TempDir dir;
+  const NoiseGroup group = dem_like_noise_groups()[3];
+  const auto curve_case = CalibrationCase::at(calibration_set("tuning"), 1);
+  write_curve(dir / "curve.csv", curve_case.draw(group), "strain[1],force[1],elastic_energy[1]");
+  const double x_c = run_like_truth(curve_case.shape, curve_case.seed, group.run).x_c;
+  const auto smooth =
+      run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " + quoted(dir / "smooth.json"));
+  const auto corner = run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " +
+                                  quoted(dir / "corner.json") + " --force-top corner");
+  ASSERT_EQ(smooth.exit_code, 0) << smooth.out << smooth.err;
+  ASSERT_EQ(corner.exit_code, 0) << corner.out << corner.err;
+  const auto s = nlohmann::json::parse(slurp(dir / "smooth.json"));
+  const auto c = nlohmann::json::parse(slurp(dir / "corner.json"));
+  EXPECT_EQ(s["inputs"]["force_top"], "smooth");
+  EXPECT_EQ(c["inputs"]["force_top"], "corner");
+  EXPECT_EQ(s["peak_fits"]["force"]["form"], "cubic");
+  EXPECT_EQ(c["peak_fits"]["force"]["form"], "corner of two lines on the unfiltered rows");
+  EXPECT_LT(s["x_c"]["value"].get<double>(), x_c - 0.01 * x_c);
+  EXPECT_NEAR(c["x_c"]["value"].get<double>(), x_c, 0.005 * x_c);
+  const auto bad = run_rupture("analyze " + quoted(dir / "curve.csv") + " --force-top sharp");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--force-top"), std::string::npos) << bad.err;
 }
 
 TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
