@@ -233,8 +233,8 @@ inline const HeldOutSet later_held_out_sets[] = {
     {"held-out-27", 3.7, 0.25, 0.12, 0.95, 0.34, 6.2, {"weibull mixture k=3.3 51/49 x1.4", 0.51, 3.3, 1.4, 2.5}},
     {"held-out-27", 2.7, 1.3, 0.032, 0.98, 0.27, 4.1, {"weibull mixture k=4.6 51/49 x1.3", 0.51, 4.6, 1.3, 2}},
     // Twelve shapes drawn by bench/draw_held_out.py 28, fixed before any interval of curves cut by a
-    // sharp collapse was learned after held-out 27 (brittle, to be scored by where the collapse comes);
-    // not run yet (docs/analysis.md, "Where the rows fall").
+    // sharp collapse was learned after held-out 27; run once, on the dem-like groups, to check x_c's
+    // corner form (docs/analysis.md, "Known answers with a DEM-like top").
     {"held-out-28", 5.9, 2.8, 0.051, 0.99, 0.31, 6.1, {"weibull mixture k=3 35/65 x1.5", 0.35, 3, 1.5, 2.9}},
     {"held-out-28", 4.3, 2.2, 0.14, 0.74, 0.57, 3.9, {"weibull mixture k=5.3 57/43 x1.4", 0.57, 5.3, 1.4, 2}},
     // Twelve shapes drawn by bench/draw_held_out.py 29, fixed before x_p's random-walk factors learned
