@@ -12,7 +12,7 @@
 // from its peak to a collapse at 1.02-1.06 x_c, as a tissue's does; calibration_set.hpp]
 // [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
 // stationary-walk: one step along the curve | corner: walk-profile with the force's top fitted as a corner
-// at a collapse, AnalysisOptions::force_top]. The per-curve file holds each curve's truth, estimates,
+// at a collapse, AnalysisOptions::force_peak_form]. The per-curve file holds each curve's truth, estimates,
 // intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
 // and the noise the analysis measured on F and E_e as a share of their maxima, with its white and random-walk
 // parts (per sample and per step) apart (files before held-out 22 lack the first two columns, before
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
       unscaled;  // the bootstrap's own intervals: interval_scales.py learns and checks the factors
   unscaled.calibrated_intervals = false;
   unscaled.uncertainty.walk_profile = variant != "stationary-walk";
-  if (variant == "corner") unscaled.force_top = ForceTop::corner;
+  if (variant == "corner") unscaled.force_peak_form = PeakForm::corner;
   std::printf(
       "| group | curves | accepted | δ_x 68 %% | δ_x 95 %% | x_c 95 %% | x_p 95 %% | δ_x mean rel. error | "
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");

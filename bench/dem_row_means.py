@@ -17,7 +17,7 @@ the run's strain unit, the rejection), the header written where the file is new:
 "The bootstrap's noise read on the loading" takes the median sd and the rms over runs of δ_x's sd
 over the starts from such a table of five runs.
 The dense file's own *_mean columns are dropped first, so that both kinds are built from the single
-samples. Any further arguments go to every `rupture analyze` (e.g. `--force-top corner`). Standard library
+samples. Any further arguments go to every `rupture analyze` (e.g. `--force-peak-form corner`; they need a TABLE before them). Standard library
 only.
 """
 import json

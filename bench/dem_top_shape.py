@@ -5,9 +5,10 @@ Usage: dem_top_shape.py DENSE_CURVES...
 
 DENSE_CURVES are curves.csv files written with a row every few steps (`rupture run CONFIG --set
 output.interval=10`). For each run: x_c, the strain where the running mean of the top force over 40 rows
-peaks (between 0.3 and 0.5 % strain, as bench/dem_x_c_reference.py reads it); where the running mean of
-the elastic energy peaks and where the force's first falls below 0.9 of its peak, both over x_c; and the
-force and energy's running means at 0.90 to 1.10 x_c, over their peaks. Standard library only.
+peaks (between 0.3 and 0.5 % strain; bench/dem_x_c_reference.py averages that over 20 and 40 rows); where
+the running mean of the elastic energy peaks and where the force first falls below 0.9 of its peak, both
+over x_c; and the force's and energy's running means at 0.90 to 1.10 x_c, over their peaks. Standard
+library only.
 """
 import csv
 import sys

@@ -211,7 +211,7 @@ struct PeakSearch {
   // the data's own measurement only. A replicate or the weaker filter's measurement that meets the
   // edge fails instead (a failed replicate; no smoothing shift), as before the step existed.
   bool past_filter_edge = false;
-  ForceTop force_top = ForceTop::smooth;
+  PeakForm force_peak_form = PeakForm::smooth;
   std::string_view strain_unit;  // named in a failed fit's problem
 };
 
@@ -278,17 +278,24 @@ std::size_t past_the_filters_edge(std::span<const double> rate, std::size_t firs
   return first;
 }
 
-// ForceTop::corner: where the cubic's x_c lies within the filter's edge of the collapse's onset, the
+// Whether a maximum at x lies within the filter's edge before a collapse's onset, where the filtered
+// loading follows its end's continuation rather than the rows.
+bool within_edge_of_onset(double x, double onset_x, const FilterSettings& filter, double step) {
+  return x > onset_x - static_cast<double>(edge_samples(filter)) * step;
+}
+
+// PeakForm::corner: where the cubic's x_c lies within the filter's edge of the collapse's onset, the
 // filtered loading cannot follow a corner there (it rises to the onset, and the cubic across the corner
 // lands on its shallower side: 1.3-1.9 % of x_c early on known answers with such a top), so x_c is the
 // corner of two lines fitted to the unfiltered rows over that edge. The checks keep the filtered top's
 // sample (`index`).
 void fit_force_corner(std::span<const double> xs, std::span<const double> force, std::size_t onset,
                       std::size_t first, const FilterSettings& filter, PeakMeasurement& m) {
-  const std::size_t edge = edge_samples(filter);
   const double spacing = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
-  if (!m.force.found || m.force.x <= xs[onset] - static_cast<double>(edge) * spacing) return;
+  if (!m.force.found || !within_edge_of_onset(m.force.x, xs[onset], filter, spacing)) return;
+  const std::size_t edge = edge_samples(filter);
   const std::size_t low = std::max(first, onset > edge ? onset - edge : 0);
+  if (onset < low + 6) return;  // fit_corner needs three samples on each side
   PeakFit corner = fit_corner(xs.subspan(low, onset - low + 1), force.subspan(low, onset - low + 1));
   if (!corner.found) return;
   corner.index = m.force.index;
@@ -327,7 +334,7 @@ PeakMeasurement measure_peaks(std::span<const double> xs, std::span<const double
     filter_either_side(filter, force, *onset, m.filtered_force);
     filter_either_side(filter, energy, *onset, m.filtered_energy);
     fit_force();
-    if (search.force_top == ForceTop::corner) fit_force_corner(xs, force, *onset, first, filter, m);
+    if (search.force_peak_form == PeakForm::corner) fit_force_corner(xs, force, *onset, first, filter, m);
   }
   const double step = xs.size() > 1 ? xs[1] - xs[0] : 1.0;
   m.energy_rate = savgol_filter(m.filtered_energy, search.derivative_window, 3, 1, step);
@@ -808,15 +815,16 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
   // their shift is the cut's, not the smoothing's, and half of it carried x_c (and δ_x) past the
   // onset. There they keep their fitted values, the half shift still counted in their sd.
   const bool x_c_at_cut =
-      r.collapse_onset &&
-      r.force_peak->x > *r.collapse_onset - static_cast<double>(edge_samples(r.filter)) * r.step;
+      r.collapse_onset && within_edge_of_onset(r.force_peak->x, *r.collapse_onset, r.filter, r.step);
   const auto interval = [&](double estimate, double (*of)(const PeakValues&), double kept_bias = 0.0) {
     return bootstrap_interval(estimate, replicate_values(boot.replicates, of), kept_bias);
   };
   const auto x_c_of = [](const PeakValues& v) { return v.x_c; };
   const double x_c_cut_bias = x_c_at_cut ? interval(values.x_c, x_c_of).bias : 0.0;
-  const auto shift =
-      smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
+  auto shift = smoothing_shift(g.xs, g.force(), g.energy(), search, values, requested_derivative_window);
+  // A corner's x_c takes no filter: a weaker filter's shorter edge only moves its window, or its
+  // measurement falls back to the cubic, and neither is a smoothing shift.
+  if (r.force_peak->corner) shift.x_c = 0.0;
   // The fit's own error estimated on the data carries the data's noise too; the replicates' spread
   // of the same estimate is that noise's share, taken out in quadrature (0 where it explains all).
   const auto fit_error = [&](double on_data, double (*of)(const PeakValues&)) {
@@ -1037,11 +1045,15 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
       .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
       .collapse_onset = onset,
       .past_filter_edge = true,
-      .force_top = options.force_top,
+      .force_peak_form = options.force_peak_form,
       .strain_unit = r.strain_unit};
   r.derivative_window = search.derivative_window;
   const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
   record_peaks(measurement, g, r);
+  if (options.force_peak_form == PeakForm::corner && r.force_peak->found && !r.force_peak->corner)
+    r.warnings.push_back(
+        "force peak form corner asked for, but x_c is the cubic's over the filtered top: no collapse onset "
+        "within the filter's edge of the force peak, or no corner at a maximum in the rows before it");
   check_peaks(g, measurement.phase_end + 1, measurement.collapse_onset, options.acceptance, r);  // 5
   // 6–7. A parametric bootstrap of the measurement (bootstrap.hpp) over the span of the three fits,
   // padded, gives every number's uncertainty and δ_x's. The walk's step profile serves the curves
@@ -1070,7 +1082,7 @@ std::string energy_rate_unit(const AnalysisResult& result) {
   return io::unit_ratio(result.energy_unit, result.strain_unit);
 }
 
-const char* to_string(ForceTop top) { return top == ForceTop::corner ? "corner" : "smooth"; }
+const char* to_string(PeakForm form) { return form == PeakForm::corner ? "corner" : "smooth"; }
 
 const char* to_string(DelayMethod method) {
   return method == DelayMethod::fitted_maxima ? "fitted-maxima" : "shift-l1";

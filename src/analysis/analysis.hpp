@@ -84,8 +84,8 @@ const char* to_string(DelayMethod method);
 // its peak and sags to the collapse over fewer rows than the edge: x_c is the corner of two lines
 // fitted to the unfiltered rows there, fit_corner). The rows cannot tell the two apart under their
 // noise, so the choice is the user's (docs/analysis.md, "Known answers with a DEM-like top").
-enum class ForceTop { smooth, corner };
-const char* to_string(ForceTop top);
+enum class PeakForm { smooth, corner };
+const char* to_string(PeakForm form);
 
 struct AnalysisOptions {
   std::size_t max_samples = 20000;  // denser curves are block-averaged to this many samples (0 = never)
@@ -94,7 +94,7 @@ struct AnalysisOptions {
   PeakFitOptions peak;
   DelayMethod delay_method = DelayMethod::fitted_maxima;
   DelayOptions delay;  // shift_l1 only
-  ForceTop force_top = ForceTop::smooth;
+  PeakForm force_peak_form = PeakForm::smooth;
   BootstrapOptions uncertainty;
   AcceptanceRules acceptance;
   MechanismRules mechanism;

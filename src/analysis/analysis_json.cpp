@@ -25,7 +25,7 @@ nlohmann::json peak_json(const std::optional<PeakFit>& fit, const std::string& u
   nlohmann::json j = {{"found", fit->found},
                       {"window", io::quantity({fit->window_low, fit->window_high}, unit)},
                       {"points", fit->points},
-                      {"form", fit->corner ? "corner of two lines on the unfiltered rows" : "cubic"}};
+                      {"form", fit->corner ? "corner" : "cubic"}};
   if (!fit->found) j["problem"] = fit->problem;
   return j;
 }
@@ -209,12 +209,13 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["E_max"] = optional_json(r.E_max);
   j["x_p"] = strain_json(r.x_p, r.x_p_interval, r);
   j["Erate_max"] = optional_json(r.Erate_max);
-  j["peak_fits"] = {{"force", peak_json(r.force_peak, r.strain_unit)},
-                    {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},
-                    {"energy_rate", peak_json(r.rate_peak, r.strain_unit)},
-                    {"method",
-                     "cubic least squares around the largest sample; stationary point (the force's, with "
-                     "force_top = corner at a collapse: the corner of two lines)"}};
+  j["peak_fits"] = {
+      {"force", peak_json(r.force_peak, r.strain_unit)},
+      {"elastic_energy", peak_json(r.energy_peak, r.strain_unit)},
+      {"energy_rate", peak_json(r.rate_peak, r.strain_unit)},
+      {"method",
+       "cubic least squares around the largest sample; stationary point (the force's, with "
+       "force_peak_form = corner at a collapse: the corner of two lines on the unfiltered rows)"}};
   j["delta_x"] = delay_json(r);
   // The levels x_p's and δ_x's white factors followed (shares of the peaks), so a reader sees why an
   // interval is or is not calibrated.

@@ -37,7 +37,7 @@ nlohmann::json inputs_json(const CurveFileInputs& in, const std::string& breaks_
           {"derivative_window", a.derivative_window},
           {"peak_drop", a.peak.drop},
           {"delay_method", to_string(a.delay_method)},
-          {"force_top", to_string(a.force_top)},
+          {"force_peak_form", to_string(a.force_peak_form)},
           {"replicates", a.uncertainty.replicates},
           {"bootstrap_seed", a.uncertainty.seed},
           {"walk_profile", a.uncertainty.walk_profile},

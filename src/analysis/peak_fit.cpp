@@ -148,6 +148,11 @@ PeakFit fit_corner(std::span<const double> x, std::span<const double> y) {
       [&](double k) { return corner_lines(x, y, k).residual; }, std::max(first, best_k - scan),
       std::min(last, best_k + scan), 40);
   const double k = refined.second < best_residual ? refined.first : best_k;
+  if (k - first < 0.5 * scan || last - k < 0.5 * scan) {
+    fit.problem = "the corner lies at the end of the window";
+    fit.cut_short = true;
+    return fit;
+  }
   const CornerLines lines = corner_lines(x, y, k);
   if (!(lines.coefficients(1) > 0.0 && lines.coefficients(2) < 0.0)) {
     fit.problem = "the two lines do not meet at a maximum";
@@ -157,6 +162,8 @@ PeakFit fit_corner(std::span<const double> x, std::span<const double> y) {
   fit.corner = true;
   fit.x = k;
   fit.value = lines.coefficients(0);
+  fit.left_slope = lines.coefficients(1);
+  fit.right_slope = lines.coefficients(2);
   fit.index = static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), k) - x.begin());
   if (fit.index > 0 && k - x[fit.index - 1] < x[fit.index] - k) --fit.index;
   return fit;

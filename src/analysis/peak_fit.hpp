@@ -30,6 +30,7 @@ struct PeakFit {
   bool cut_short = false;  // not found because the data ends too soon: too few samples, or the largest
                            // within min_side of the end
   bool corner = false;     // x and value from fit_corner, not the cubic
+  double left_slope = 0.0, right_slope = 0.0;  // fit_corner: the two lines' slopes (y per x)
 };
 
 // Fits a cubic to (x, y) around the largest y. `noise` is the per-sample standard deviation of the
@@ -42,9 +43,10 @@ PeakFit fit_peak(std::span<const double> x, std::span<const double> y, double no
 
 // Fits a corner to (x, y): the continuous two-line least-squares fit y = c + a min(x - k, 0) +
 // b max(x - k, 0), its corner k sought over the interior (at least three samples on each side).
-// Found where the left line rises and the right one falls: x = k, value = c, index the sample nearest
-// k, `corner` set. For a maximum where the curve turns at an angle, which a cubic over it puts on the
-// shallower side (docs/analysis.md, "Known answers with a DEM-like top").
+// Found where the left line rises and the right one falls, the corner inside the scanned range (at
+// either end of it one line would rest on three samples): x = k, value = c, index the sample nearest k,
+// the slopes a and b, `corner` set. For a maximum where the curve turns at an angle, which a cubic over it
+// puts on the shallower side (docs/analysis.md, "Known answers with a DEM-like top").
 PeakFit fit_corner(std::span<const double> x, std::span<const double> y);
 
 // Indices of the local maxima of y whose topographic prominence (height above the higher of the

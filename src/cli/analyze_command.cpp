@@ -202,10 +202,10 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
                   "energy rate onto F (shift-l1)")
       ->check(CLI::IsMember({"fitted-maxima", "shift-l1"}));
   cmd->add_option(
-         "--force-top", o->force_top,
-         "How the force tops out before a collapse: smooth (a cubic over the filtered top, default) or "
-         "corner (it turns at its peak and sags to the collapse, as a DEM tissue does: x_c is the corner "
-         "of two lines on the unfiltered rows near the collapse)")
+         "--force-peak-form", o->force_peak_form,
+         "How the force peaks before a collapse: smooth (a cubic over the filtered top, default) or corner "
+         "(it turns at its peak and sags to the collapse, as a DEM tissue does: x_c is the corner of two "
+         "lines on the unfiltered rows near the collapse)")
       ->check(CLI::IsMember({"smooth", "corner"}));
   cmd->add_option("--max-samples", o->analysis.max_samples,
                   "Denser curves are averaged in blocks down to this many samples (0: never)");
@@ -225,7 +225,8 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
     auto& a = o->analysis;
     a.delay_method = o->delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1
                                                    : analysis::DelayMethod::fitted_maxima;
-    a.force_top = o->force_top == "corner" ? analysis::ForceTop::corner : analysis::ForceTop::smooth;
+    a.force_peak_form =
+        o->force_peak_form == "corner" ? analysis::PeakForm::corner : analysis::PeakForm::smooth;
     a.filter.kind = o->filter == "savgol" ? analysis::FilterKind::savitzky_golay
                     : o->filter == "none" ? analysis::FilterKind::none
                                           : analysis::FilterKind::butterworth;

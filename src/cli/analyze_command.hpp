@@ -17,7 +17,7 @@ struct AnalyzeOptions {
   analysis::ColumnChoice columns;
   std::string filter = "butterworth";
   std::string delay_method = "fitted-maxima";
-  std::string force_top = "smooth";
+  std::string force_peak_form = "smooth";
   analysis::AnalysisOptions analysis;
 };
 

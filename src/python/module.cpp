@@ -329,15 +329,16 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 
 analysis::AnalysisOptions analysis_options(const std::string& delay_method, std::size_t replicates,
                                            std::uint64_t seed, bool walk_profile,
-                                           const std::string& force_top) {
+                                           const std::string& force_peak_form) {
   analysis::AnalysisOptions options;
   if (delay_method != "fitted-maxima" && delay_method != "shift-l1")
     throw InputError("delay_method", "'" + delay_method + "' is not a method",
                      "use \"fitted-maxima\" or \"shift-l1\"");
-  if (force_top != "smooth" && force_top != "corner")
-    throw InputError("force_top", "'" + force_top + "' is not a form of the force's top",
+  if (force_peak_form != "smooth" && force_peak_form != "corner")
+    throw InputError("force_peak_form", "'" + force_peak_form + "' is not a form of the force's peak",
                      "use \"smooth\" or \"corner\"");
-  options.force_top = force_top == "corner" ? analysis::ForceTop::corner : analysis::ForceTop::smooth;
+  options.force_peak_form =
+      force_peak_form == "corner" ? analysis::PeakForm::corner : analysis::PeakForm::smooth;
   options.delay_method =
       delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
   if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
@@ -350,7 +351,7 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
                         const std::string& strain_unit, const std::string& force_unit,
                         const std::string& energy_unit, const std::string& delay_method,
                         std::size_t replicates, std::uint64_t seed, bool walk_profile,
-                        const std::string& force_top) {
+                        const std::string& force_peak_form) {
   if (strain.size() != force.size() || strain.size() != energy.size())
     throw InputError("analyze",
                      fmt::format("strain, force and energy have {}, {} and {} values", strain.size(),
@@ -367,7 +368,7 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   curve.strain_column = "strain";
   curve.force_column = "force";
   curve.energy_column = "elastic_energy";
-  const auto options = analysis_options(delay_method, replicates, seed, walk_profile, force_top);
+  const auto options = analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form);
   json document;
   {
     py::gil_scoped_release release;
@@ -389,10 +390,10 @@ std::tuple<std::size_t, std::size_t, std::size_t> columns_read(const std::vector
 
 py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method,
                       std::size_t replicates, std::uint64_t seed, bool walk_profile,
-                      const std::string& force_top) {
+                      const std::string& force_peak_form) {
   analysis::CurveFileInputs inputs;
   inputs.curves = curves;
-  inputs.options = analysis_options(delay_method, replicates, seed, walk_profile, force_top);
+  inputs.options = analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form);
   json document;
   {
     py::gil_scoped_release release;
@@ -491,8 +492,8 @@ PYBIND11_MODULE(_rupture, m) {
 
   m.def("analyze_arrays", &analyze_arrays, py::arg("strain"), py::arg("force"), py::arg("energy"),
         py::arg("strain_unit"), py::arg("force_unit"), py::arg("energy_unit"), py::arg("delay_method"),
-        py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"), py::arg("force_top"));
+        py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"));
   m.def("columns_read", &columns_read, py::arg("header"));
   m.def("analyze_file", &analyze_file, py::arg("curves"), py::arg("delay_method"), py::arg("replicates"),
-        py::arg("seed"), py::arg("walk_profile"), py::arg("force_top"));
+        py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"));
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -347,28 +348,28 @@ struct RunRows {
 };
 
 // How a tissue's force tops out (the study's five dense runs, docs/analysis.md): F rises to a kink,
-// 0.3-1 F_c/x_c steep on its left (a bundle's top is flat there), and sags 2-5 % to the collapse at
+// 0.2-1 F_c/x_c steep on its left (a bundle's top is flat there), and sags 2-5 % to the collapse at
 // 1.03-1.06 x_c while E_e still rises to just before it. A sagging run-like curve loses, beyond the
-// bundle's own breaks, fibres at a steady rate in strain from a kink at `kink` on (a Poisson count of
-// breaks a step, each kicking F's ringing as the bundle's own breaks do): the rate that holds F level
-// there, plus `rate` times the fibres intact at the kink over x_c. The kink is drawn in [0.82, 0.94] of
-// the law's x_c (at least 0.05 x_c past x_p, so that ℰ's maximum stays the law's), rate in [0.5, 1.5],
-// and the collapse at b times the kink, b in [1.02, 1.06]: the sag there is 1-9 %.
+// bundle's own breaks, fibres at a steady rate in strain from a kink on (a Poisson count of breaks a
+// step, each kicking F's ringing as the bundle's own breaks do): the rate that holds F level there,
+// plus an excess drawn in [0.5, 1.5] times the fibres intact at the kink per x_c. The kink is drawn in
+// [0.82, 0.94] of the law's x_c, but at least 0.05 x_c past x_p (capped at x_c), so that ℰ's maximum
+// stays the law's; the collapse comes at b times the kink, b in [1.02, 1.06]: the sag there is 1-9 %.
 struct Sag {
   double kink = 0.0;  // strain where the extra breaking starts: the curve's x_c
-  double rate = 0.0;  // extra breaks per unit strain, share of the fibres intact at the kink
+  double rate = 0.0;  // extra breaks per unit strain (level + excess), share of the fibres intact at the kink
   double cut = 0.0;   // strain where the sample comes apart
 };
 inline Sag run_like_sag(const Shape& s, std::uint64_t seed) {
   Rng rng(seed, RandomStream::analysis_noise, 13);
-  const double x_c = argmax([&](double x) { return x * (1.0 - s.cdf(x)); }, s.x_end);
-  const double x_p = argmax([&](double x) { return x * (1.0 - s.cdf(x)) - 0.5 * x * x * s.pdf(x); }, s.x_end);
-  const double kink = std::max(rng.uniform(0.82, 0.94) * x_c, std::min(x_p + 0.05 * x_c, x_c));
+  const Truth law = truth(s);
+  const double kink =
+      std::max(rng.uniform(0.82, 0.94) * law.x_c, std::min(law.x_p + 0.05 * law.x_c, law.x_c));
   const double survive = 1.0 - s.cdf(kink);
-  // F = x I with I' = -pdf - rate_total I(kink): level at the kink for rate_total = 1/kink - pdf/I.
+  // F = x I with I' = -pdf - rate I(kink): level at the kink for rate = 1/kink - pdf/I.
   const double level = std::max(0.0, 1.0 / kink - s.pdf(kink) / survive);
-  const double rate = level + rng.uniform(0.5, 1.5) / x_c;
-  return {kink, rate, rng.uniform(1.02, 1.06) * kink};
+  const double excess = rng.uniform(0.5, 1.5) / law.x_c;
+  return {kink, level + excess, rng.uniform(1.02, 1.06) * kink};
 }
 
 // The intact share of a sagging run-like curve's mean (run_like_sag) at strain x.
@@ -426,9 +427,10 @@ inline Curve run_like_steps(const Shape& s, std::size_t fibers, const RunRows& r
   Rng rng(seed, RandomStream::analysis_noise, 11);
   const StepOscillator mode(rng.uniform(250.0, 450.0));
   const auto t = truth(s);
-  const double cut = rows.collapse ? run_like_cut(s, seed, rows.sag) : 2.0 * s.x_end;
+  if (rows.sag && !rows.collapse) throw std::invalid_argument("run_like_steps: a sag needs its collapse");
   // The sag's breaks: a Poisson process in their expected count, arrivals one exponential apart.
   const Sag sag = rows.sag ? run_like_sag(s, seed) : Sag{2.0 * s.x_end, 0.0, 0.0};
+  const double cut = !rows.collapse ? 2.0 * s.x_end : rows.sag ? sag.cut : run_like_cut(s, seed);
   Rng sag_rng(seed, RandomStream::analysis_noise, 14);
   double sag_expected = 0.0, sag_next = -std::log(sag_rng.uniform01_open_zero()), sag_broken = 0.0;
   std::size_t intact_at_kink = 0;
@@ -494,10 +496,11 @@ inline Curve run_like_steps(const Shape& s, std::size_t fibers, const RunRows& r
 // study's dt) and quality 10, kicked by every break with a normal impulse, scaled so that its rms over
 // [0.7, 0.95] x_c is `rows.ring` F_c (0.26-0.60 % on five seeds of the study's run); E_e carries the
 // bundle's own walk. With `rows.collapse` the sample comes apart at b x_c, b drawn in [1.03, 1.2] (the
-// study's five seeds: 1.07-1.10): every fibre left breaks in that step, F and E_e fall by e every 1,000
-// steps towards 7 % and 30 % of their values there, and the pieces ring on at 5 times the loading's
-// level. A row every `rows.every` steps from step 0, each the step's values or, with `rows.means`, the
-// means of 20 samples over the row's interval as rupture run takes them (the first row: the instant).
+// study's five seeds: 1.07-1.10; with `rows.sag`, run_like_sag's): every fibre left breaks in that step, F
+// and E_e fall by e every 1,000 steps towards 7 % and 30 % of their values there, and the pieces ring on at 5
+// times the loading's level. A row every `rows.every` steps from step 0, each the step's values or, with
+// `rows.means`, the means of 20 samples over the row's interval as rupture run takes them (the first row: the
+// instant).
 inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& rows, std::uint64_t seed) {
   const Curve steps = run_like_steps(s, fibers, rows, seed);
   const std::size_t stride = std::max<std::size_t>(1, rows.every / 20);

@@ -80,9 +80,9 @@ TEST(AnalyzeCli, ACurveCutByACollapseGetsNoNoiseLevelNote) {
   EXPECT_NE(r.out.find("not calibrated"), std::string::npos) << r.out;
 }
 
-// --force-top corner: recorded with the inputs, the force's fit named as a corner, x_c moved onto it
+// --force-peak-form corner: recorded with the inputs, the force's fit named as a corner, x_c moved onto it
 // (a dem-like curve: Weibull k = 3, x_c 0.6118, the cubic's 0.603); an unknown form is refused.
-TEST(AnalyzeCli, ForceTopCornerIsRecordedAndMovesX_cOntoTheCorner) {
+TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
   using namespace calibration;
   TempDir dir;
   const NoiseGroup group = dem_like_noise_groups()[3];
@@ -92,20 +92,20 @@ TEST(AnalyzeCli, ForceTopCornerIsRecordedAndMovesX_cOntoTheCorner) {
   const auto smooth =
       run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " + quoted(dir / "smooth.json"));
   const auto corner = run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " +
-                                  quoted(dir / "corner.json") + " --force-top corner");
+                                  quoted(dir / "corner.json") + " --force-peak-form corner");
   ASSERT_EQ(smooth.exit_code, 0) << smooth.out << smooth.err;
   ASSERT_EQ(corner.exit_code, 0) << corner.out << corner.err;
   const auto s = nlohmann::json::parse(slurp(dir / "smooth.json"));
   const auto c = nlohmann::json::parse(slurp(dir / "corner.json"));
-  EXPECT_EQ(s["inputs"]["force_top"], "smooth");
-  EXPECT_EQ(c["inputs"]["force_top"], "corner");
+  EXPECT_EQ(s["inputs"]["force_peak_form"], "smooth");
+  EXPECT_EQ(c["inputs"]["force_peak_form"], "corner");
   EXPECT_EQ(s["peak_fits"]["force"]["form"], "cubic");
-  EXPECT_EQ(c["peak_fits"]["force"]["form"], "corner of two lines on the unfiltered rows");
+  EXPECT_EQ(c["peak_fits"]["force"]["form"], "corner");
   EXPECT_LT(s["x_c"]["value"].get<double>(), x_c - 0.01 * x_c);
   EXPECT_NEAR(c["x_c"]["value"].get<double>(), x_c, 0.005 * x_c);
-  const auto bad = run_rupture("analyze " + quoted(dir / "curve.csv") + " --force-top sharp");
+  const auto bad = run_rupture("analyze " + quoted(dir / "curve.csv") + " --force-peak-form sharp");
   EXPECT_NE(bad.exit_code, 0);
-  EXPECT_NE(bad.err.find("--force-top"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--force-peak-form"), std::string::npos) << bad.err;
 }
 
 TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {

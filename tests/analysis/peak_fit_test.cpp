@@ -62,6 +62,8 @@ TEST(PeakFit, FindsTheCornerOfTwoLinesBetweenSamples) {
   EXPECT_TRUE(corner.corner);
   EXPECT_NEAR(corner.x, 0.4237, 1e-8);
   EXPECT_NEAR(corner.value, 1.0, 1e-8);
+  EXPECT_NEAR(corner.left_slope, 0.4, 1e-6);
+  EXPECT_NEAR(corner.right_slope, -1.5, 1e-6);
   EXPECT_EQ(corner.index, 212u);
   const PeakFit cubic = fit_peak(s.x, s.y, 0.0, 1.0);
   ASSERT_TRUE(cubic.found) << cubic.problem;
@@ -89,6 +91,17 @@ TEST(PeakFit, ACornerUnderNoiseIsFoundAndARisingLineHasNone) {
   const PeakFit rising = fit_corner(line.x, line.y);
   EXPECT_FALSE(rising.found);
   EXPECT_NE(rising.problem.find("do not meet at a maximum"), std::string::npos) << rising.problem;
+  // A line that turns down only in its last two samples: the corner would rest on three samples at the
+  // window's end, where noise alone makes one.
+  std::vector<double> x, y;
+  for (int i = 0; i < 20; ++i) {
+    x.push_back(i);
+    y.push_back(i <= 17 ? i : 17 - (i - 17));
+  }
+  const PeakFit at_end = fit_corner(x, y);
+  EXPECT_FALSE(at_end.found);
+  EXPECT_TRUE(at_end.cut_short);
+  EXPECT_NE(at_end.problem.find("at the end of the window"), std::string::npos) << at_end.problem;
   EXPECT_FALSE(fit_corner(std::vector<double>(line.x.begin(), line.x.begin() + 6),
                           std::vector<double>(line.y.begin(), line.y.begin() + 6))
                    .found)

@@ -215,9 +215,9 @@ def test_a_dataframe_is_read_by_the_columns_rupture_analyze_picks():
         rupture.analyze(pd.DataFrame({"force": [0.0, 1.0], "elastic_energy": [0.0, 1.0]}))
 
 
-def test_analyze_force_top_matches_the_command_line(tmp_path):
+def test_analyze_force_peak_form_matches_the_command_line(tmp_path):
     # A force that rises at 0.5 to a corner at x = 0.4, sags at 1.5 to a collapse at 0.41 and falls, under
-    # white noise: the corner form puts x_c on the corner (the cubic: 0.383), as --force-top corner does.
+    # white noise: the corner form puts x_c on the corner (the cubic: 0.383), as --force-peak-form corner does.
     rng = np.random.default_rng(5)
     strain = np.linspace(0.0, 0.5, 1001)
     force = np.where(strain < 0.4, 1.0 - 0.5 * (0.4 - strain), 1.0 - 1.5 * (strain - 0.4))
@@ -227,17 +227,17 @@ def test_analyze_force_top_matches_the_command_line(tmp_path):
     curve = tmp_path / "corner.csv"
     np.savetxt(curve, np.column_stack([strain, force + 0.002 * rng.standard_normal(strain.size), energy]),
                delimiter=",", header="strain[1],force[1],elastic_energy[1]", comments="")
-    for form, fit in (("smooth", "cubic"), ("corner", "corner of two lines on the unfiltered rows")):
+    for form, fit in (("smooth", "cubic"), ("corner", "corner")):
         out = tmp_path / f"analysis-{form}.json"
-        cli("analyze", curve, "--force-top", form, "-o", out)
+        cli("analyze", curve, "--force-peak-form", form, "-o", out)
         expected = json.loads(out.read_text())
-        a = rupture.analyze(curve, force_top=form)
-        assert a.document["inputs"]["force_top"] == form
+        a = rupture.analyze(curve, force_peak_form=form)
+        assert a.document["inputs"]["force_peak_form"] == form
         assert a.document["peak_fits"]["force"]["form"] == expected["peak_fits"]["force"]["form"] == fit
         assert a.x_c.value == expected["x_c"]["value"]
     assert abs(a.x_c.value - 0.4) < 0.002
-    with pytest.raises(rupture.InputError, match="force_top.*use \"smooth\" or \"corner\""):
-        rupture.analyze(curve, force_top="sharp")
+    with pytest.raises(rupture.InputError, match="force_peak_form.*use \"smooth\" or \"corner\""):
+        rupture.analyze(curve, force_peak_form="sharp")
 
 
 def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):

@@ -75,7 +75,7 @@ class Analysis:
 
 
 def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_method="fitted-maxima",
-            replicates=0, seed=1, walk_profile=True, force_top="smooth"):
+            replicates=0, seed=1, walk_profile=True, force_peak_form="smooth"):
     """Analyses a curve given as
       - a DataFrame with columns strain, force (or force_top) and elastic_energy, units taken from
         names like strain[%] (e.g. Run.curves, read_curves()); a run's strain_mean, force_top_mean and
@@ -87,12 +87,12 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     walk_profile: on curves read as a random walk, the walk's steps follow the curve's falling
     stiffness (default, as rupture analyze); False: one stationary step (rupture analyze
     --no-walk-profile);
-    force_top: "smooth" (default) or "corner": a force that turns at its peak and sags to a collapse,
-    as a DEM tissue's does, has x_c at the corner of two lines on the rows there (rupture analyze
-    --force-top corner)."""
+    force_peak_form: "smooth" (default) or "corner": a force that turns at its peak and sags to a
+    collapse, as a DEM tissue's does, has x_c at the corner of two lines on the rows there (rupture
+    analyze --force-peak-form corner)."""
     if isinstance(data, (str, Path)):
         return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed),
-                                              bool(walk_profile), str(force_top)))
+                                              bool(walk_profile), str(force_peak_form)))
     if force is None and hasattr(data, "columns"):
         frame = data
         names = [str(c) for c in frame.columns]
@@ -112,4 +112,4 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
                                             np.asarray(force, dtype=float).tolist(),
                                             np.asarray(energy, dtype=float).tolist(),
                                             units[0], units[1], units[2], delay_method, int(replicates), int(seed),
-                                            bool(walk_profile), str(force_top)))
+                                            bool(walk_profile), str(force_peak_form)))
