@@ -86,7 +86,8 @@ TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
   using namespace calibration;
   TempDir dir;
   const NoiseGroup group = dem_like_noise_groups()[3];
-  const auto curve_case = CalibrationCase::at(calibration_set("tuning"), 1);
+  const auto set = calibration_set("tuning");  // CalibrationCase refers to its shape
+  const auto curve_case = CalibrationCase::at(set, 1);
   write_curve(dir / "curve.csv", curve_case.draw(group), "strain[1],force[1],elastic_energy[1]");
   const double x_c = run_like_truth(curve_case.shape, curve_case.seed, group.run).x_c;
   const auto smooth =
