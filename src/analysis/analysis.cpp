@@ -612,15 +612,48 @@ std::optional<Grid> uniform_grid(const Curve& curve, const AnalysisOptions& opti
   return g;
 }
 
-// On a bundle's increments the steps' noise can exceed all the slope's variation, so the
-// discrepancy rule accepts the floor of its search, a share of the whole record: a curve recorded
-// far past its peak is then averaged over most of the rise to it, which moves the maxima of broad
-// laws by up to 10 % of δ_x. The rise itself, measured with that first filter, caps the smoothing.
-void cap_smoothing_by_rise_to_peak(std::span<const double> force, double share, FilterSettings& filter) {
+// The shares of the rise to the force peak that bound step 2's automatic filter (AnalysisOptions).
+struct SmoothingShares {
+  double random_walk_cap = 0.0;  // random_walk_smoothing_share
+  double floor = 0.0;            // smoothing_floor_share
+};
+
+// Whether a curve's noise model holds noise: a white sd or a walk step of at least 10⁻⁴ of the
+// curve's largest magnitude (an exact curve's model is its curvature alone, or round-off).
+bool carries_noise(const NoiseComponents& noise, std::span<const double> y) {
+  double largest = 0.0;
+  for (double v : y) largest = std::max(largest, std::abs(v));
+  return std::max(noise.white, noise.walk) >= 1e-4 * largest;
+}
+
+// Step 2's bounds on the automatic choice, in samples of the rise from the first row to the maximum
+// of F filtered with that choice.
+// - The cap (random walk): on a bundle's increments the steps' noise can exceed all the slope's
+//   variation, so the discrepancy rule accepts the floor of its search, a share of the whole record:
+//   a curve recorded far past its peak is then averaged over most of the rise to it, which moves the
+//   maxima of broad laws by up to 10 % of δ_x.
+// - The floor (either curve's noise white): the rule keeps what stands above the noise of F and E_e,
+//   but x_p is the maximum of ℰ, E_e's derivative, whose noise the same filter leaves far larger
+//   (white noise of 0.2-1 % put δ_x's rms error at 12-22 %). A ringing sampled a few rows a period
+//   (a run's F at rows every 100 steps) looks like signal to the rule, which then barely smooths.
+//   On a pure walk the rule runs on the increments, E_e's own derivative, and keeps its choice.
+void bound_smoothing_by_rise(const Grid& g, const NoiseModel& noise, const SmoothingShares& shares,
+                             FilterSettings& filter, AnalysisResult& r) {
   FilterSettings pilot = filter;
-  const auto filtered = apply_filter(pilot, force);
-  const auto top = static_cast<double>(std::max_element(filtered.begin(), filtered.end()) - filtered.begin());
-  if (top > 0.0) limit_smoothing(filter, share * top);
+  const auto filtered = apply_filter(pilot, g.force());
+  const auto rise =
+      static_cast<double>(std::max_element(filtered.begin(), filtered.end()) - filtered.begin());
+  if (rise <= 0.0) return;
+  if (reads_random_walk(r) && shares.random_walk_cap > 0.0)
+    limit_smoothing(filter, shares.random_walk_cap * rise);
+  const bool white_read = !(r.force_walk && r.energy_walk);
+  if (shares.floor > 0.0 && white_read &&
+      (carries_noise(noise.force, g.force()) || carries_noise(noise.energy, g.energy()))) {
+    const FilterSettings chosen = filter;
+    require_smoothing(filter, shares.floor * rise);
+    r.smoothing_floor_applied =
+        filter.cutoff != chosen.cutoff || filter.savgol_window != chosen.savgol_window;
+  }
 }
 
 // The noise model that decides step 2's kind of noise, read on the whole record. Where the whole
@@ -642,9 +675,10 @@ NoiseModel noise_for_kind(const Grid& g) {
 // 2. One zero-phase filter for both curves, chosen from the noise. Where a random walk dominates
 // the noise (finite bundles: every break is a step), the discrepancy principle runs on the
 // increments, which are then the white part: on the curves themselves it would take the walk's
-// low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed; the rise to the force
-// peak then caps that choice. Under white noise the rule sees the curve's own shape and its choice
-// stands (a cap there only adds noise: docs/analysis.md).
+// low frequencies for signal and leave ℰ, the walk's derivative, unsmoothed. Under white noise the
+// rule sees the curve's own shape. The rise to the force peak then bounds the choice: a cap under a
+// walk, a floor under white noise (bound_smoothing_by_rise; a cap there only adds noise:
+// docs/analysis.md).
 //
 // F and E_e can carry different kinds: on a DEM curve F's noise is white (elastic waves at the
 // plates) and E_e's a walk (every break drops it). The walk's choice on F's increments, white
@@ -652,7 +686,7 @@ NoiseModel noise_for_kind(const Grid& g) {
 // curve, each chosen for its own kind, fixed that on curves with known answers but moved x_c by up to
 // 12 % and lost acceptances on rupture's own scans (docs/analysis.md, "A filter per curve"), so
 // such a curve is only warned of.
-void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share, AnalysisResult& r) {
+void choose_filter(const Grid& g, FilterSettings& filter, const SmoothingShares& shares, AnalysisResult& r) {
   const std::size_t n = g.size();
   const bool automatic = chooses_own_strength(filter);
   const NoiseModel noise = noise_for_kind(g);
@@ -673,11 +707,12 @@ void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share
     }
     const std::span<const double> steps[] = {force_steps, energy_steps};
     choose_shared_filter(filter, steps);
-    if (automatic && smoothing_share > 0.0) cap_smoothing_by_rise_to_peak(g.force(), smoothing_share, filter);
   } else {
     const std::span<const double> raw[] = {g.force(), g.energy()};
     choose_shared_filter(filter, raw);
   }
+  r.smoothing_floor_applied = false;
+  if (automatic) bound_smoothing_by_rise(g, noise, shares, filter, r);
   r.filter = filter;
   r.force_noise = noise_from_differences(g.force());
   r.energy_noise = noise_from_differences(g.energy());
@@ -689,11 +724,11 @@ void choose_filter(const Grid& g, FilterSettings& filter, double smoothing_share
 // the drop too and chooses a far weaker filter (known-answer Weibull curves cut at 1.35 x_c: cutoff
 // 0.13-0.17 against 0.028 uncut). Returns the onset, which every measurement then splits at.
 std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettings& filter,
-                                                     double smoothing_share, double collapse_fraction,
+                                                     const SmoothingShares& shares, double collapse_fraction,
                                                      AnalysisResult& r) {
   const FilterSettings requested = filter;
   const std::size_t warnings = r.warnings.size();
-  choose_filter(g, filter, smoothing_share, r);
+  choose_filter(g, filter, shares, r);
   const FilteredTop top = filtered_force_top(g.force(), filter);
   const auto onset = sharp_collapse_onset(g.force(), g.energy(), top.index, collapse_fraction * top.value,
                                           collapse_width(top.index));
@@ -705,7 +740,7 @@ std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettin
   loading.xs.resize(*onset + 1);
   r.warnings.resize(warnings);  // the whole record's reading is replaced, warnings included
   filter = requested;
-  choose_filter(loading, filter, smoothing_share, r);
+  choose_filter(loading, filter, shares, r);
   return onset;
 }
 
@@ -1034,8 +1069,9 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
-  const auto onset = choose_filter_for_loading(g, options.filter, options.random_walk_smoothing_share,
-                                               options.acceptance.collapse_fraction, r);  // 2
+  const auto onset = choose_filter_for_loading(
+      g, options.filter, {options.random_walk_smoothing_share, options.smoothing_floor_share},
+      options.acceptance.collapse_fraction, r);  // 2
   // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
   const PeakSearch search{
       .filter = r.filter,

@@ -102,6 +102,11 @@ struct AnalysisOptions {
   // the curve's start to the filtered force's maximum; 0: no cap. 0.5 was chosen among 0.35, 0.5 and
   // 0.7 by δ_x's rms error (bench/smoothing_share_sweep; docs/analysis.md, "The smoothing cap").
   double random_walk_smoothing_share = 0.5;
+  // Where F's or E_e's noise reads as white (or rings), the automatic filter's period is at least this
+  // share of the same samples; 0: the discrepancy rule's choice alone. That rule reads the noise of
+  // the curves, which leaves ℰ, their derivative, under-smoothed, and a ringing sampled a few rows a
+  // period looks like signal to it (docs/analysis.md, "The smoothing floor").
+  double smoothing_floor_share = 0.25;
   // δ_x's, x_c's and x_p's intervals scaled by their factors (delta_interval_scales and the strain
   // scales, below); false keeps the bootstrap's own, from which bench/interval_scales.py learns them.
   bool calibrated_intervals = true;
@@ -264,6 +269,8 @@ struct AnalysisResult {
   // The noise kind read in each curve over the whole record: whether a random walk dominates it.
   // One filter serves both; its automatic choice ran on the increments where either reads so.
   bool force_walk = false, energy_walk = false;
+  // Whether AnalysisOptions::smoothing_floor_share strengthened the automatic filter.
+  bool smoothing_floor_applied = false;
   // White noise in the bootstrap window below quiet_white_noise_share of both peaks: the intervals
   // then take the random walk's factors whatever the whole record reads.
   bool quiet = false;

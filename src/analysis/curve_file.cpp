@@ -38,6 +38,7 @@ nlohmann::json inputs_json(const CurveFileInputs& in, const std::string& breaks_
           {"peak_drop", a.peak.drop},
           {"delay_method", to_string(a.delay_method)},
           {"force_peak_form", to_string(a.force_peak_form)},
+          {"smoothing_floor_share", a.smoothing_floor_share},
           {"replicates", a.uncertainty.replicates},
           {"bootstrap_seed", a.uncertainty.seed},
           {"walk_profile", a.uncertainty.walk_profile},

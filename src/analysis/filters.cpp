@@ -325,6 +325,16 @@ void limit_smoothing(FilterSettings& settings, double longest_period) {
                  std::min(settings.savgol_window, odd_at_least(static_cast<int>(longest_period) - 1)));
 }
 
+void require_smoothing(FilterSettings& settings, double shortest_period) {
+  if (shortest_period <= 0.0) return;
+  if (settings.kind == FilterKind::butterworth)
+    settings.cutoff = std::min(settings.cutoff, std::min(0.95, 2.0 / shortest_period));
+  else if (settings.kind == FilterKind::savitzky_golay)
+    settings.savgol_window = std::max(
+        settings.savgol_window,
+        std::min(max_auto_savgol_window, odd_at_least(static_cast<int>(std::ceil(shortest_period)))));
+}
+
 std::size_t edge_samples(const FilterSettings& settings) {
   switch (settings.kind) {
     case FilterKind::butterworth:

@@ -105,6 +105,12 @@ std::vector<double> filter_continuing_end(const FilterSettings& settings, std::s
 // width set by how long it was recorded, not by its features.
 void limit_smoothing(FilterSettings& settings, double longest_period);
 
+// Raises the smoothing so that the filter averages over at least `shortest_period` samples (a
+// Butterworth cutoff of at most 2/shortest_period Nyquist units; a Savitzky–Golay window of at least
+// shortest_period samples, at most max_auto_savgol_window). Used after an automatic choice whose rule
+// reads the noise of the curves where a derivative of them is measured (analysis.cpp, step 2).
+void require_smoothing(FilterSettings& settings, double shortest_period);
+
 // Samples at each end of the data where the filter's output still carries its edge: a
 // Butterworth's response to the padding pinned to the first (last) noisy sample decays over about
 // 1/cutoff samples; Savitzky–Golay's end polynomial spans half its window; none has no edge. The

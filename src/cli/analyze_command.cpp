@@ -207,6 +207,11 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
          "(it turns at its peak and sags to the collapse, as a DEM tissue does: x_c is the corner of two "
          "lines on the unfiltered rows near the collapse)")
       ->check(CLI::IsMember({"smooth", "corner"}));
+  cmd->add_option(
+         "--smoothing-floor", o->analysis.smoothing_floor_share,
+         "Where the noise of F or E_e reads as white, the automatic filter averages over at least this "
+         "share of the rows up to the force peak (default 0.25; 0: the noise alone chooses)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--max-samples", o->analysis.max_samples,
                   "Denser curves are averaged in blocks down to this many samples (0: never)");
   cmd->add_option("--replicates", o->analysis.uncertainty.replicates,

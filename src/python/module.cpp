@@ -329,8 +329,13 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 
 analysis::AnalysisOptions analysis_options(const std::string& delay_method, std::size_t replicates,
                                            std::uint64_t seed, bool walk_profile,
-                                           const std::string& force_peak_form) {
+                                           const std::string& force_peak_form, double smoothing_floor) {
   analysis::AnalysisOptions options;
+  if (!(smoothing_floor >= 0.0 && smoothing_floor <= 1.0))
+    throw InputError("smoothing_floor",
+                     fmt::format("{} is not a share of the rise to the force peak", smoothing_floor),
+                     "give a value in [0, 1] (0: the noise alone chooses the filter)");
+  options.smoothing_floor_share = smoothing_floor;
   if (delay_method != "fitted-maxima" && delay_method != "shift-l1")
     throw InputError("delay_method", "'" + delay_method + "' is not a method",
                      "use \"fitted-maxima\" or \"shift-l1\"");
@@ -351,7 +356,7 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
                         const std::string& strain_unit, const std::string& force_unit,
                         const std::string& energy_unit, const std::string& delay_method,
                         std::size_t replicates, std::uint64_t seed, bool walk_profile,
-                        const std::string& force_peak_form) {
+                        const std::string& force_peak_form, double smoothing_floor) {
   if (strain.size() != force.size() || strain.size() != energy.size())
     throw InputError("analyze",
                      fmt::format("strain, force and energy have {}, {} and {} values", strain.size(),
@@ -368,7 +373,8 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   curve.strain_column = "strain";
   curve.force_column = "force";
   curve.energy_column = "elastic_energy";
-  const auto options = analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form);
+  const auto options =
+      analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form, smoothing_floor);
   json document;
   {
     py::gil_scoped_release release;
@@ -390,10 +396,11 @@ std::tuple<std::size_t, std::size_t, std::size_t> columns_read(const std::vector
 
 py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method,
                       std::size_t replicates, std::uint64_t seed, bool walk_profile,
-                      const std::string& force_peak_form) {
+                      const std::string& force_peak_form, double smoothing_floor) {
   analysis::CurveFileInputs inputs;
   inputs.curves = curves;
-  inputs.options = analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form);
+  inputs.options =
+      analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form, smoothing_floor);
   json document;
   {
     py::gil_scoped_release release;
@@ -492,8 +499,9 @@ PYBIND11_MODULE(_rupture, m) {
 
   m.def("analyze_arrays", &analyze_arrays, py::arg("strain"), py::arg("force"), py::arg("energy"),
         py::arg("strain_unit"), py::arg("force_unit"), py::arg("energy_unit"), py::arg("delay_method"),
-        py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"));
+        py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"),
+        py::arg("smoothing_floor"));
   m.def("columns_read", &columns_read, py::arg("header"));
   m.def("analyze_file", &analyze_file, py::arg("curves"), py::arg("delay_method"), py::arg("replicates"),
-        py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"));
+        py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"), py::arg("smoothing_floor"));
 }

@@ -109,6 +109,34 @@ TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
   EXPECT_NE(bad.err.find("--force-peak-form"), std::string::npos) << bad.err;
 }
 
+// --smoothing-floor 0 leaves the filter to the noise alone, and both runs say what they did: on a
+// run-like curve at rows every 100 steps the floor strengthens the filter (docs/analysis.md, "The
+// smoothing floor").
+TEST(AnalyzeCli, SmoothingFloorIsRecordedAndZeroLeavesTheFilterToTheNoise) {
+  using namespace calibration;
+  TempDir dir;
+  const NoiseGroup group = dem_like_noise_groups()[0];
+  const auto set = calibration_set("tuning");
+  write_curve(dir / "curve.csv", CalibrationCase::at(set, 3).draw(group),
+              "strain[1],force[1],elastic_energy[1]");
+  const auto floored =
+      run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " + quoted(dir / "floored.json"));
+  const auto alone = run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " +
+                                 quoted(dir / "alone.json") + " --smoothing-floor 0");
+  ASSERT_EQ(floored.exit_code, 0) << floored.out << floored.err;
+  ASSERT_EQ(alone.exit_code, 0) << alone.out << alone.err;
+  const auto f = nlohmann::json::parse(slurp(dir / "floored.json"));
+  const auto a = nlohmann::json::parse(slurp(dir / "alone.json"));
+  EXPECT_EQ(f["inputs"]["smoothing_floor_share"], 0.25);
+  EXPECT_EQ(a["inputs"]["smoothing_floor_share"], 0.0);
+  EXPECT_TRUE(f["filter"]["smoothing_floor_applied"].get<bool>());
+  EXPECT_FALSE(a["filter"]["smoothing_floor_applied"].get<bool>());
+  EXPECT_LT(f["filter"]["cutoff_nyquist"].get<double>(), 0.25 * a["filter"]["cutoff_nyquist"].get<double>());
+  const auto bad = run_rupture("analyze " + quoted(dir / "curve.csv") + " --smoothing-floor 1.5");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--smoothing-floor"), std::string::npos) << bad.err;
+}
+
 TEST(AnalyzeCli, FbmCurveIsAcceptedAndWritesAnalysisJsonWithUnits) {
   TempDir dir;
   auto c = testing::power_law_curve(0.0, 2001);

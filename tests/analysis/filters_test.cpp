@@ -168,6 +168,28 @@ TEST(AutomaticFilter, LimitOnSmoothingOnlyWeakensTheFilter) {
   EXPECT_EQ(window.savgol_window, 5);  // the smallest window of a cubic
 }
 
+// The floor on smoothing only ever strengthens a filter, to a period of at least the given samples,
+// and never past the longest window the automatic choice tries.
+TEST(AutomaticFilter, FloorOnSmoothingOnlyStrengthensTheFilter) {
+  FilterSettings weak;
+  weak.cutoff = 0.4;  // a period of 5 samples
+  require_smoothing(weak, 50.0);
+  EXPECT_DOUBLE_EQ(weak.cutoff, 0.04);
+  FilterSettings strong;
+  strong.cutoff = 0.01;  // 200 samples: already beyond 50
+  require_smoothing(strong, 50.0);
+  EXPECT_DOUBLE_EQ(strong.cutoff, 0.01);
+  FilterSettings window;
+  window.kind = FilterKind::savitzky_golay;
+  window.savgol_window = 11;
+  require_smoothing(window, 30.2);
+  EXPECT_EQ(window.savgol_window, 31);
+  require_smoothing(window, 20.0);
+  EXPECT_EQ(window.savgol_window, 31);
+  require_smoothing(window, 5000.0);
+  EXPECT_EQ(window.savgol_window, max_auto_savgol_window);
+}
+
 // A piece cut short (the loading before a collapse) is continued by its trend before filtering: its
 // filtered end follows the last noisy sample less than the plain padding's does, and stays unbiased. Straight
 // line plus white noise of sd 1, 200 seeds, cutoff 0.05 (an edge of 20 samples).

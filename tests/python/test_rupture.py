@@ -240,6 +240,32 @@ def test_analyze_force_peak_form_matches_the_command_line(tmp_path):
         rupture.analyze(curve, force_peak_form="sharp")
 
 
+def test_analyze_smoothing_floor_matches_the_command_line(tmp_path):
+    # The power law α = 3 (F = x(1 - x⁴)) under 0.2 % white noise, 2,000 rows: the floor strengthens the
+    # filter and brings x_p towards its exact 0.50813; 0 leaves the filter to the noise, as --smoothing-floor 0.
+    rng = np.random.default_rng(9)
+    strain = np.linspace(0.0, 1.2, 2000)
+    force = strain * (1.0 - np.clip(strain, 0.0, 1.0) ** 4)
+    energy = 0.5 * strain * force
+    curve = tmp_path / "white.csv"
+    np.savetxt(curve, np.column_stack([strain, force + 0.002 * force.max() * rng.standard_normal(strain.size),
+                                       energy + 0.002 * energy.max() * rng.standard_normal(strain.size)]),
+               delimiter=",", header="strain[1],force[1],elastic_energy[1]", comments="")
+    x_p = {}
+    for share, applied in ((0.25, True), (0.0, False)):
+        out = tmp_path / f"analysis-{share}.json"
+        cli("analyze", curve, "--smoothing-floor", str(share), "-o", out)
+        expected = json.loads(out.read_text())
+        a = rupture.analyze(curve, smoothing_floor=share)
+        assert a.document["inputs"]["smoothing_floor_share"] == share
+        assert a.document["filter"]["smoothing_floor_applied"] == expected["filter"]["smoothing_floor_applied"] == applied
+        assert a.x_p.value == expected["x_p"]["value"]
+        x_p[share] = a.x_p.value
+    assert abs(x_p[0.25] - 0.50813) < 0.5 * abs(x_p[0.0] - 0.50813)
+    with pytest.raises(rupture.InputError, match="smoothing_floor.*give a value in \\[0, 1\\]"):
+        rupture.analyze(curve, smoothing_floor=2.0)
+
+
 def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):
     curve = tmp_path / "bundle.csv"
     cli("fbm", "simulate", "--dist", "uniform", "--fibers", "100000", "--seed", "7", "--out", curve)
