@@ -618,13 +618,20 @@ struct SmoothingShares {
   double floor = 0.0;            // smoothing_floor_share
 };
 
-// Whether a curve's noise model holds noise: a white sd or a walk step of at least 10⁻⁴ of the
-// curve's largest magnitude (an exact curve's model is its curvature alone, or round-off).
-bool carries_noise(const NoiseComponents& noise, std::span<const double> y) {
+// Whether a curve carries noise: its third differences' noise (noise_from_differences, what the
+// discrepancy rule reads) at least 10⁻⁵ of its largest magnitude. An exact curve's are its own third
+// derivative, 10⁻⁸ of it at a few thousand rows; a DEM run's loading at rows every 100 steps, whose
+// noise model reads almost none, 4-6·10⁻⁴.
+bool carries_noise(std::span<const double> y) {
   double largest = 0.0;
   for (double v : y) largest = std::max(largest, std::abs(v));
-  return std::max(noise.white, noise.walk) >= 1e-4 * largest;
+  return noise_from_differences(y) >= 1e-5 * largest;
 }
+
+// The fewest samples from the first row to the force peak for the smoothing floor: at fewer, the
+// floor's edge (an eighth of the rise) reaches from the collapse over ℰ's maximum (the study's runs
+// at rows every 1,000 steps, a rise of ~40 rows, lost 14 of 29 accepted analyses).
+constexpr double smoothing_floor_min_rise = 100.0;
 
 // Step 2's bounds on the automatic choice, in samples of the rise from the first row to the maximum
 // of F filtered with that choice.
@@ -637,8 +644,8 @@ bool carries_noise(const NoiseComponents& noise, std::span<const double> y) {
 //   (white noise of 0.2-1 % put δ_x's rms error at 12-22 %). A ringing sampled a few rows a period
 //   (a run's F at rows every 100 steps) looks like signal to the rule, which then barely smooths.
 //   On a pure walk the rule runs on the increments, E_e's own derivative, and keeps its choice.
-void bound_smoothing_by_rise(const Grid& g, const NoiseModel& noise, const SmoothingShares& shares,
-                             FilterSettings& filter, AnalysisResult& r) {
+void bound_smoothing_by_rise(const Grid& g, const SmoothingShares& shares, FilterSettings& filter,
+                             AnalysisResult& r) {
   FilterSettings pilot = filter;
   const auto filtered = apply_filter(pilot, g.force());
   const auto rise =
@@ -647,8 +654,8 @@ void bound_smoothing_by_rise(const Grid& g, const NoiseModel& noise, const Smoot
   if (reads_random_walk(r) && shares.random_walk_cap > 0.0)
     limit_smoothing(filter, shares.random_walk_cap * rise);
   const bool white_read = !(r.force_walk && r.energy_walk);
-  if (shares.floor > 0.0 && white_read &&
-      (carries_noise(noise.force, g.force()) || carries_noise(noise.energy, g.energy()))) {
+  if (shares.floor > 0.0 && white_read && rise >= smoothing_floor_min_rise &&
+      (carries_noise(g.force()) || carries_noise(g.energy()))) {
     const FilterSettings chosen = filter;
     require_smoothing(filter, shares.floor * rise);
     r.smoothing_floor_applied =
@@ -712,7 +719,7 @@ void choose_filter(const Grid& g, FilterSettings& filter, const SmoothingShares&
     choose_shared_filter(filter, raw);
   }
   r.smoothing_floor_applied = false;
-  if (automatic) bound_smoothing_by_rise(g, noise, shares, filter, r);
+  if (automatic) bound_smoothing_by_rise(g, shares, filter, r);
   r.filter = filter;
   r.force_noise = noise_from_differences(g.force());
   r.energy_noise = noise_from_differences(g.energy());

@@ -91,7 +91,8 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     collapse, as a DEM tissue's does, has x_c at the corner of two lines on the rows there (rupture
     analyze --force-peak-form corner);
     smoothing_floor: where the noise of F or E_e reads as white, the automatic filter averages over at
-    least this share of the rows up to the force peak (default 0.25; 0: the noise alone chooses;
+    least this share of the rows up to the force peak, where they are 100 or more (default 0.25; 0: the
+    noise alone chooses;
     rupture analyze --smoothing-floor)."""
     if isinstance(data, (str, Path)):
         return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed),
