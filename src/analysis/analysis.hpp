@@ -103,10 +103,13 @@ struct AnalysisOptions {
   // 0.7 by δ_x's rms error (bench/smoothing_share_sweep; docs/analysis.md, "The smoothing cap").
   double random_walk_smoothing_share = 0.5;
   // Where F's or E_e's noise reads as white (or rings), the automatic filter's period is at least this
-  // share of the same samples, where they are 100 or more; 0: the discrepancy rule's choice alone. That
-  // rule reads the noise of the curves, which leaves ℰ, their derivative, under-smoothed, and a ringing
-  // sampled a few rows a period looks like signal to it (docs/analysis.md, "The smoothing floor").
-  double smoothing_floor_share = 0.25;
+  // share of the same samples, where they are 100 or more; 0 (the default): the discrepancy rule's
+  // choice alone. That rule reads the noise of the curves, which leaves ℰ, their derivative,
+  // under-smoothed, and a ringing sampled a few rows a period looks like signal to it. 0.25 mends DEM
+  // runs at rows every 100-200 steps and white noise on dense rows, but moves x_p on sharp peaks (δ_x
+  // under a tenth of x_c) and failed held-out 31's rule on the dem-like groups, so it is an option
+  // (docs/analysis.md, "The smoothing floor").
+  double smoothing_floor_share = 0.0;
   // δ_x's, x_c's and x_p's intervals scaled by their factors (delta_interval_scales and the strain
   // scales, below); false keeps the bootstrap's own, from which bench/interval_scales.py learns them.
   bool calibrated_intervals = true;

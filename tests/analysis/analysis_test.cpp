@@ -145,7 +145,11 @@ TEST(AnalyzeCurve, RandomWalkSmoothingIsCappedByTheRiseToTheForcePeak) {
   const auto r = analyze_curve(c, {});
   ASSERT_TRUE(r.accepted) << r.rejection;
   ASSERT_TRUE(r.force_walk && r.energy_walk);
-  EXPECT_FALSE(r.smoothing_floor_applied);  // a pure walk keeps the rule's choice, capped
+  AnalysisOptions floored;  // a pure walk keeps the rule's choice on its increments, capped
+  floored.smoothing_floor_share = 0.25;
+  const auto with_floor = analyze_curve(c, floored);
+  EXPECT_FALSE(with_floor.smoothing_floor_applied);
+  EXPECT_EQ(with_floor.filter.cutoff, r.filter.cutoff);
   const double samples_to_peak = (r.force_peak->x - r.x0) / r.step;
   const double period = 2.0 / r.filter.cutoff;  // samples
   EXPECT_LE(period, 0.51 * samples_to_peak);
@@ -386,13 +390,12 @@ struct AnalysedCase {
   calibration::Truth truth;
 };
 AnalysedCase analyse_set_curve(const std::string& set_name, int k, const calibration::NoiseGroup& group,
-                               std::string_view shape, std::size_t rows,
-                               const AnalysisOptions& options = {}) {
+                               std::string_view shape, std::size_t rows) {
   const auto set = calibration::calibration_set(set_name);
   const auto curve_case = calibration::CalibrationCase::at(set, k);
   EXPECT_EQ(curve_case.shape.name, shape) << set_name << " curve " << k;
   EXPECT_EQ(curve_case.rows, rows) << set_name << " curve " << k;
-  return {analyze_curve(curve_case.draw(group), options), calibration::truth(curve_case.shape)};
+  return {analyze_curve(curve_case.draw(group), {}), calibration::truth(curve_case.shape)};
 }
 
 // α = 7 under 1 % white noise, 5000 rows (held-out 8's curve 31): the Butterworth filter (cutoff
@@ -412,13 +415,9 @@ TEST(AnalyzeCurve, TheFiltersEdgeDoesNotWinTheEnergyRateMaximum) {
 // measurement fails at the record's start, so it adds no smoothing shift. When it stepped past the
 // edge as the data's does (the third form), it found x_p 0.151 away and δ_x's sd went 0.045 ->
 // 0.156: the curve was rejected as too uncertain. Only the data's measurement steps past the edge.
-// (Read with the discrepancy rule's own filter: the smoothing floor's stronger one has a weaker twin
-// that no longer fails at the start.)
 TEST(AnalyzeCurve, OnlyTheDatasMeasurementStepsPastTheFiltersEdge) {
-  AnalysisOptions rule_alone;
-  rule_alone.smoothing_floor_share = 0.0;
-  const auto [r, t] = analyse_set_curve("held-out-22", 194, calibration::noise_groups()[2],
-                                        "uniform [0.083,0.98]", 1000, rule_alone);
+  const auto [r, t] =
+      analyse_set_curve("held-out-22", 194, calibration::noise_groups()[2], "uniform [0.083,0.98]", 1000);
   ASSERT_TRUE(r.accepted) << r.rejection;
   EXPECT_EQ(r.smoothing_shift.x_p, 0.0);
   EXPECT_LT(r.delay->sd, 0.06);
@@ -449,6 +448,22 @@ TEST(AnalyzeCurve, NoiseFreeCurvesOfEveryShapeRecoverTheirMaxima) {
     EXPECT_NEAR(r.delta_x->value, t.delta(), 1e-2 * t.delta()) << s.name;
     EXPECT_NEAR(r.Gamma->value, t.gamma(), 1e-2 * std::abs(t.gamma())) << s.name;
     EXPECT_NEAR(r.A_r->value, t.energy_ratio(), 1e-2 * t.energy_ratio()) << s.name;
+  }
+}
+
+// An exact curve carries no noise (its third differences are its third derivative, ~1e-8 of it), so the
+// smoothing floor leaves its filter, and every number, as they are.
+TEST(AnalyzeCurve, TheSmoothingFloorLeavesANoiseFreeCurveAlone) {
+  using namespace calibration;
+  AnalysisOptions floor;
+  floor.smoothing_floor_share = 0.25;
+  for (const auto& s : shapes()) {
+    const auto c = exact_curve(s, 2000);
+    const auto floored = analyze_curve(c, floor), plain = analyze_curve(c, {});
+    EXPECT_FALSE(floored.smoothing_floor_applied) << s.name;
+    ASSERT_TRUE(floored.x_p && plain.x_p) << s.name;
+    EXPECT_EQ(floored.filter.cutoff, plain.filter.cutoff) << s.name;
+    EXPECT_EQ(floored.x_p->value, plain.x_p->value) << s.name;
   }
 }
 
@@ -1270,15 +1285,15 @@ TEST(AnalyzeCurve, TheForcePeakOfALoadingCutJustPastItIsNotPulledIntoTheCollapse
 // Dem-like curves at rows every 100 steps, single samples (the tuning set's first twelve): F's ringing,
 // a few rows a period, reads as white noise or as signal, and the discrepancy rule alone barely
 // smoothed (curve 3: x_p 21 % of x_c late, on a spike of E_e's walk).
-// The smoothing floor (a quarter of the rise to the force peak) accepts all twelve and halves x_p's rms
-// error (docs/analysis.md, "The smoothing floor").
+// The smoothing floor (a quarter of the rise to the force peak, an option) accepts all twelve and
+// halves x_p's rms error (docs/analysis.md, "The smoothing floor").
 TEST(AnalyzeCurve, ARingingRunAtFineRowsIsSmoothedOverAQuarterOfItsRise) {
   using namespace calibration;
   const auto set = calibration_set("tuning");
   const NoiseGroup group = dem_like_noise_groups()[0];
   ASSERT_EQ(group.name, "dem-like rows every 100 samples");
-  AnalysisOptions rule_alone;
-  rule_alone.smoothing_floor_share = 0.0;
+  AnalysisOptions floor, rule_alone;  // the default is the rule alone
+  floor.smoothing_floor_share = 0.25;
   struct Score {
     int accepted = 0;
     double squares = 0.0;
@@ -1289,7 +1304,7 @@ TEST(AnalyzeCurve, ARingingRunAtFineRowsIsSmoothedOverAQuarterOfItsRise) {
     const auto curve_case = CalibrationCase::at(set, k);
     const Curve c = curve_case.draw(group);
     const auto t = run_like_truth(curve_case.shape, curve_case.seed, group.run);
-    const auto floored = analyze_curve(c, {}), rule = analyze_curve(c, rule_alone);
+    const auto floored = analyze_curve(c, floor), rule = analyze_curve(c, rule_alone);
     EXPECT_FALSE(rule.smoothing_floor_applied);
     if (floored.smoothing_floor_applied) ++floors_applied;  // elsewhere the rule smoothed harder
     if (floored.accepted) {

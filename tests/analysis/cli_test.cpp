@@ -109,20 +109,20 @@ TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
   EXPECT_NE(bad.err.find("--force-peak-form"), std::string::npos) << bad.err;
 }
 
-// --smoothing-floor 0 leaves the filter to the noise alone, and both runs say what they did: on a
-// run-like curve at rows every 100 steps the floor strengthens the filter (docs/analysis.md, "The
-// smoothing floor").
-TEST(AnalyzeCli, SmoothingFloorIsRecordedAndZeroLeavesTheFilterToTheNoise) {
+// --smoothing-floor 0.25 strengthens the filter of a run-like curve at rows every 100 steps; the default
+// (0) leaves it to the noise alone; both runs say what they did (docs/analysis.md, "The smoothing
+// floor").
+TEST(AnalyzeCli, SmoothingFloorIsRecordedAndStrengthensTheFilterWhereAskedFor) {
   using namespace calibration;
   TempDir dir;
   const NoiseGroup group = dem_like_noise_groups()[0];
   const auto set = calibration_set("tuning");
   write_curve(dir / "curve.csv", CalibrationCase::at(set, 3).draw(group),
               "strain[1],force[1],elastic_energy[1]");
-  const auto floored =
-      run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " + quoted(dir / "floored.json"));
-  const auto alone = run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " +
-                                 quoted(dir / "alone.json") + " --smoothing-floor 0");
+  const auto floored = run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " +
+                                   quoted(dir / "floored.json") + " --smoothing-floor 0.25");
+  const auto alone =
+      run_rupture("analyze " + quoted(dir / "curve.csv") + " -o " + quoted(dir / "alone.json"));
   ASSERT_EQ(floored.exit_code, 0) << floored.out << floored.err;
   ASSERT_EQ(alone.exit_code, 0) << alone.out << alone.err;
   const auto f = nlohmann::json::parse(slurp(dir / "floored.json"));

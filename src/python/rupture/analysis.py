@@ -75,7 +75,7 @@ class Analysis:
 
 
 def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_method="fitted-maxima",
-            replicates=0, seed=1, walk_profile=True, force_peak_form="smooth", smoothing_floor=0.25):
+            replicates=0, seed=1, walk_profile=True, force_peak_form="smooth", smoothing_floor=0.0):
     """Analyses a curve given as
       - a DataFrame with columns strain, force (or force_top) and elastic_energy, units taken from
         names like strain[%] (e.g. Run.curves, read_curves()); a run's strain_mean, force_top_mean and
@@ -91,9 +91,8 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     collapse, as a DEM tissue's does, has x_c at the corner of two lines on the rows there (rupture
     analyze --force-peak-form corner);
     smoothing_floor: where the noise of F or E_e reads as white, the automatic filter averages over at
-    least this share of the rows up to the force peak, where they are 100 or more (default 0.25; 0: the
-    noise alone chooses;
-    rupture analyze --smoothing-floor)."""
+    least this share of the rows up to the force peak, where they are 100 or more (default 0: the noise
+    alone chooses; 0.25 mends DEM runs at rows every 100-200 steps; rupture analyze --smoothing-floor)."""
     if isinstance(data, (str, Path)):
         return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed),
                                               bool(walk_profile), str(force_peak_form),
