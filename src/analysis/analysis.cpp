@@ -646,15 +646,16 @@ constexpr double smoothing_floor_min_rise = 100.0;
 //   On a pure walk the rule runs on the increments, E_e's own derivative, and keeps its choice.
 void bound_smoothing_by_rise(const Grid& g, const SmoothingShares& shares, FilterSettings& filter,
                              AnalysisResult& r) {
+  const bool capped = reads_random_walk(r) && shares.random_walk_cap > 0.0;
+  const bool floored = shares.floor > 0.0 && !(r.force_walk && r.energy_walk);
+  if (!capped && !floored) return;
   FilterSettings pilot = filter;
   const auto filtered = apply_filter(pilot, g.force());
   const auto rise =
       static_cast<double>(std::max_element(filtered.begin(), filtered.end()) - filtered.begin());
   if (rise <= 0.0) return;
-  if (reads_random_walk(r) && shares.random_walk_cap > 0.0)
-    limit_smoothing(filter, shares.random_walk_cap * rise);
-  const bool white_read = !(r.force_walk && r.energy_walk);
-  if (shares.floor > 0.0 && white_read && rise >= smoothing_floor_min_rise &&
+  if (capped) limit_smoothing(filter, shares.random_walk_cap * rise);
+  if (floored && rise >= smoothing_floor_min_rise &&
       (carries_noise(g.force()) || carries_noise(g.energy()))) {
     const FilterSettings chosen = filter;
     require_smoothing(filter, shares.floor * rise);
