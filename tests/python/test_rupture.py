@@ -260,6 +260,9 @@ def test_analyze_smoothing_floor_matches_the_command_line(tmp_path):
         assert a.document["inputs"]["smoothing_floor_share"] == share
         assert a.document["filter"]["smoothing_floor_applied"] == expected["filter"]["smoothing_floor_applied"] == applied
         assert a.x_p.value == expected["x_p"]["value"]
+        # the factors were learned without the floor: its intervals say they are not calibrated
+        assert a.document["delta_x"]["interval_scales"]["calibrated"] == (not applied)
+        assert any("smoothing floor" in w for w in a.document["warnings"]) == applied
         x_p[share] = a.x_p.value
     assert abs(x_p[0.25] - 0.50813) < 0.5 * abs(x_p[0.0] - 0.50813)
     with pytest.raises(rupture.InputError, match="smoothing_floor.*give a value in \\[0, 1\\]"):
