@@ -93,20 +93,25 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
 
   // Visits the candidates of particle a (each once; the caller sorts them).
   const auto visit = [&](std::uint32_t a, auto&& take) {
-    const std::int64_t cx = table.coord(x[a], 0), cy = table.coord(y[a], 1), cz = table.coord(z[a], 2);
+    // Held in registers: `take` stores to memory, through which x[a] would otherwise be read again.
+    const double xa = x[a], ya = y[a], za = z[a], ra = p.radius[a], margin = skin;
+    const std::int64_t cx = table.coord(xa, 0), cy = table.coord(ya, 1), cz = table.coord(za, 2);
     std::int64_t seen[27];
     int distinct = 0;
     for (std::int64_t iz = cz - 1; iz <= cz + 1; ++iz)
       for (std::int64_t iy = cy - 1; iy <= cy + 1; ++iy)
         for (std::int64_t ix = cx - 1; ix <= cx + 1; ++ix) {
           const std::int64_t c = table.bucket(ix, iy, iz);
-          if (c < 0 || std::find(seen, seen + distinct, c) != seen + distinct) continue;
-          seen[distinct++] = c;
+          if (c < 0) continue;
+          if (table.hashed) {  // distinct cells may share a bucket; dense cells never do
+            if (std::find(seen, seen + distinct, c) != seen + distinct) continue;
+            seen[distinct++] = c;
+          }
           for (std::uint32_t q = cell_start_[std::size_t(c)]; q < cell_start_[std::size_t(c) + 1]; ++q) {
             const std::uint32_t b = cell_particles_[q];
             if (b == a) continue;
-            const double dx = x[b] - x[a], dy = y[b] - y[a], dz = z[b] - z[a];
-            const double cut = p.radius[a] + p.radius[b] + skin;
+            const double dx = x[b] - xa, dy = y[b] - ya, dz = z[b] - za;
+            const double cut = ra + p.radius[b] + margin;
             if (dx * dx + dy * dy + dz * dz < cut * cut && !bonds.linked(a, b)) take(b);
           }
         }
