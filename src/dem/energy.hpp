@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "dem/bonds.hpp"
 #include "dem/neighbours.hpp"
@@ -22,6 +23,28 @@ struct Energies {
   double glue = 0.0;
   std::uint64_t contacts = 0;  // overlapping unbonded pairs
 };
+
+// Each particle's share of the energies: its bonds and touching contacts to higher storage indices,
+// its kinetic and glue energy (mJ), and its contacts. Filled by measure_energies, or by the force
+// pass of a step asked to measure (dem/forces, with the same formulas in the same order), and
+// summed serially in storage order, so the total is the same for any thread count.
+struct EnergyParts {
+  std::vector<std::array<double, 4>> per;  // mJ: elastic, kinetic, contact, glue
+  std::vector<std::uint32_t> contacts;
+
+  void resize(std::size_t particles) {
+    per.resize(particles);
+    contacts.resize(particles);
+  }
+  // Particle a's share in the current state, where the top plate is at `top`.
+  void measure(std::uint32_t a, const ParticleStore& particles, const BondStore& bonds,
+               const NeighbourList& neighbours, const PlateMotion& top, const Params& params);
+  Energies total() const;
+};
+
+inline double kinetic_energy(double mass, double vx, double vy, double vz) {
+  return 0.5 * mass * (vx * vx + vy * vy + vz * vz);
+}
 
 // Per-particle values summed serially in storage order: the same for any thread count.
 Energies measure_energies(const ParticleStore& particles, const BondStore& bonds,

@@ -140,6 +140,7 @@ void System::restore_state(const EngineState& s, const std::string& source) {
   ledger_.damped = s.damped;
   neighbours_.builds = s.neighbour_rebuilds;
   forces_stale_ = s.forces_stale;
+  measured_.reset();
   times_ = s.stage_times;
   HotParticles& p = particles_.hot;
   p.x = s.x, p.y = s.y, p.z = s.z;

@@ -103,7 +103,8 @@ void System::refresh_forces() {
         [&] { breaks_.apply(step_, 0.0, particles_, bonds_, neighbours_, params_, ledger_.released); });
 }
 
-void System::step(double dt, const PlateMotion& top) {
+void System::step(double dt, const PlateMotion& top, bool measure_energies) {
+  measured_.reset();
   if (forces_stale_) {
     refresh_forces();
     forces_stale_ = false;
@@ -112,6 +113,8 @@ void System::step(double dt, const PlateMotion& top) {
   const double u_before = top_.displacement;
   top_ = top;
   const StepContext step = StepContext::at(dt, 0.5 * dt, top);
+  EnergyParts* const parts = measure_energies ? &energy_parts_ : nullptr;
+  if (parts) parts->resize(size());
   // Drift and force pass in one parallel region: on small samples the cost of opening a region is a
   // good part of each pass (docs/performance.md). When the drift leaves the neighbour list stale,
   // the threads leave before the pass, and it runs after the rebuild.
@@ -131,7 +134,7 @@ void System::step(double dt, const PlateMotion& top) {
       list_kept = keep;
       drifted = Clock::now();
     }
-    if (keep) force_sweep(step, particles_, bonds_, neighbours_, breaks_, params_);
+    if (keep) force_sweep(step, particles_, bonds_, neighbours_, breaks_, params_, parts);
   }
   times_.integrate += std::chrono::duration<double>(drifted - start).count();
   last_move_ = {std::sqrt(drift.move2), particles_.sample_of_storage[drift.mover]};
@@ -143,24 +146,35 @@ void System::step(double dt, const PlateMotion& top) {
     neighbours_.adapt_skin(step_, params_.skin, widest_skin_);
     rebuild_neighbours();
     timed(times_.forces,
-          [&] { force_pass(step, particles_, bonds_, neighbours_, breaks_, params_, parallel_); });
+          [&] { force_pass(step, particles_, bonds_, neighbours_, breaks_, params_, parallel_, parts); });
   }
   timed(times_.plates, [&] { ledger_.update_plate_forces(step, particles_, params_); });
+  const std::size_t events_before = breaks_.events.size();
   timed(times_.breaks, [&] {
     breaks_.apply(step_, step.half_dt, particles_, bonds_, neighbours_, params_, ledger_.released);
   });
+  if (parts) {
+    // A break changed its two particles' links and contact slices after the pass: their shares are
+    // measured again, so that the total is what a fresh sum gives.
+    for (std::size_t e = events_before; e < breaks_.events.size(); ++e)
+      for (const std::uint32_t a : {bonds_.i[breaks_.events[e].bond], bonds_.j[breaks_.events[e].bond]})
+        parts->measure(a, particles_, bonds_, neighbours_, top_, params_);
+    measured_ = parts->total();
+  }
   ledger_.add_plate_work(force_before, top_.displacement - u_before);
   if (params_.damping > 0.0) ledger_.sum_damping(particles_);
 }
 
 void System::break_bond(std::size_t bond) {
   if (!bonds_.intact[bond]) return;
+  measured_.reset();
   breaks_.break_one(static_cast<std::uint32_t>(bond), step_, 0.0, particles_, bonds_, neighbours_, params_,
                     ledger_.released);
   forces_stale_ = true;
 }
 
 Energies System::energies() const {
+  if (measured_) return *measured_;
   return measure_energies(particles_, bonds_, neighbours_, top_, params_, parallel_);
 }
 
@@ -170,7 +184,11 @@ std::size_t System::state_bytes() const {
          bonds_.intact.size() + (bonds_.link_bond.size() + neighbours_.list.size()) * sizeof(std::uint32_t);
 }
 
-std::size_t System::memory_bytes() const { return particles_.bytes() + bonds_.bytes() + neighbours_.bytes(); }
+std::size_t System::memory_bytes() const {
+  return particles_.bytes() + bonds_.bytes() + neighbours_.bytes() +
+         energy_parts_.per.capacity() * sizeof(energy_parts_.per[0]) +
+         energy_parts_.contacts.capacity() * sizeof(std::uint32_t);
+}
 
 Vec3 System::position(std::size_t sample_index) const {
   const auto a = particles_.storage_of_sample[sample_index];
@@ -189,6 +207,7 @@ Vec3 System::force(std::size_t sample_index) const {
 
 void System::set_velocity(std::size_t sample_index, const Vec3& v) {
   const auto a = particles_.storage_of_sample[sample_index];
+  measured_.reset();
   particles_.hot.vx[a] = v.x;
   particles_.hot.vy[a] = v.y;
   particles_.hot.vz[a] = v.z;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,10 @@ class System {
   double stiffest_mass() const { return stability_.stiffest_mass; }
 
   // --- stepping ---
-  // One velocity-Verlet step of length dt (s) to a state where the top plate has `top`.
-  void step(double dt, const PlateMotion& top);
+  // One velocity-Verlet step of length dt (s) to a state where the top plate has `top`. With
+  // `measure_energies`, its force pass also sums the energies of the state it ends in, so that
+  // energies() right after the step costs nothing (the same bits either way).
+  void step(double dt, const PlateMotion& top, bool measure_energies = false);
 
   // --- state ---
   std::size_t size() const { return particles_.size(); }
@@ -59,7 +62,10 @@ class System {
   double time() const { return time_; }
   const Params& params() const { return params_; }
 
-  Energies energies() const;
+  Energies energies() const;  // a sum over the particles, unless the last step measured them
+  // Whether the last step measured the energies of the current state (it was asked to, and the
+  // state was not changed since), so that energies() costs nothing.
+  bool energies_measured() const { return measured_.has_value(); }
   double plate_work() const { return ledger_.plate_work; }     // mJ done by the plates
   double released_energy() const { return ledger_.released; }  // mJ taken out by broken bonds
   double damping_energy() const { return ledger_.damped; }     // mJ removed by viscous damping
@@ -140,6 +146,8 @@ class System {
   double widest_skin_;  // mm: how far the neighbour list's skin may widen (Params::skin is the narrowest)
   StageTimes times_;
   StepMove last_move_;
+  EnergyParts energy_parts_;          // filled by a step asked to measure energies
+  std::optional<Energies> measured_;  // the energies of the current state, where that step found them
 };
 
 template <class PairFn>

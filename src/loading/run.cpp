@@ -376,7 +376,10 @@ class TensionRun {
         summary_.stop_reason = "max_steps";
         break;
       }
-      system_.step(plan_.dt, ramp_.at(double(n + 1) * plan_.dt));
+      const std::uint64_t done = n + 1;
+      const bool row_sample = with_row_means_ && done % row_mean_stride_ == 0,
+                 row = done % std::uint64_t(config_.output_interval) == 0;
+      system_.step(plan_.dt, ramp_.at(double(done) * plan_.dt), row_sample || row);
       if (const dem::StepMove& move = system_.last_step_move(); !(move.fraction <= max_step_move)) {
         instability_ = fmt::format("particle id {} moved {:.3g} of its radius in one step (more than {:g})",
                                    sample_.id[move.sample_index], move.fraction, max_step_move);
@@ -385,10 +388,9 @@ class TensionRun {
       }
       load_free.add(system_.force_top());
       write_breaks();
-      const std::uint64_t done = n + 1;
       const double strain = strain_now();
-      if (with_row_means_ && done % row_mean_stride_ == 0) add_row_sample(strain);
-      if (done % std::uint64_t(config_.output_interval) == 0 && !(stable_ = record_row())) break;
+      if (row_sample) add_row_sample(strain);
+      if (row && !(stable_ = record_row())) break;
       if (config_.snapshot_interval > 0 && done % std::uint64_t(config_.snapshot_interval) == 0) snapshot();
       if (!loop_.separated && done % std::uint64_t(config_.separation_check_interval) == 0)
         check_separation(load_free, strain);

@@ -92,6 +92,46 @@ TEST(Golden, StateDoesNotDependOnTheSkin) {
   }
 }
 
+// Energies measured by a step's force pass (and, after breaks, their particles' shares measured again)
+// are the ones summed afresh, bit for bit, on steps with and without breaks, and asking for them does
+// not change the state (rigid glue undamped, spring glue
+// damped: the pass's two kinds of kick).
+TEST(Golden, EnergiesMeasuredByTheStepAreTheSummedOnes) {
+  Params rigid;
+  rigid.break_distance = 0.005;
+  rigid.glue_mode = GlueMode::rigid;
+  Params damped = rigid;
+  damped.glue_mode = GlueMode::spring;
+  damped.damping = 2e4;
+  omp_set_num_threads(2);
+  for (const Params& p : {rigid, damped}) {
+    System measuring(small_tissue(), p), summing(small_tissue(), p);
+    const double dt = 0.4 * measuring.critical_dt();
+    const loading::SpeedRamp ramp{5000.0, 200 * dt};
+    int breaking_steps = 0;
+    for (int s = 1; s <= 2000; ++s) {
+      measuring.step(dt, ramp.at(double(s) * dt), true);
+      summing.step(dt, ramp.at(double(s) * dt));
+      const Energies a = measuring.energies(), b = summing.energies();
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(a.elastic), std::bit_cast<std::uint64_t>(b.elastic))
+          << "step " << s;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(a.kinetic), std::bit_cast<std::uint64_t>(b.kinetic))
+          << "step " << s;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(a.contact), std::bit_cast<std::uint64_t>(b.contact))
+          << "step " << s;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(a.glue), std::bit_cast<std::uint64_t>(b.glue)) << "step " << s;
+      ASSERT_EQ(a.contacts, b.contacts) << "step " << s;
+      EXPECT_FALSE(summing.energies_measured());
+      ASSERT_TRUE(measuring.energies_measured()) << "step " << s;
+      breaking_steps += measuring.break_events().empty() ? 0 : 1;
+      measuring.break_events().clear();
+    }
+    EXPECT_EQ(measuring.state_hash(), summing.state_hash());
+    EXPECT_GT(measuring.bond_count() - measuring.intact_bonds(), 100u) << "the pull must reach failure";
+    EXPECT_GT(breaking_steps, 100) << "steps with breaks re-measure the broken bonds' particles";
+  }
+}
+
 // Same state, bit for bit, for 1, 2 and 3 threads (another seed and break distance than above).
 TEST(Determinism, StateHashIsIndependentOfThreadCount) {
   const Sample tissue = make_preset("tissue-small", 7);
