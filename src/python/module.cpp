@@ -327,36 +327,51 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 
 // ---- analysis ----------------------------------------------------------------------------------
 
-analysis::AnalysisOptions analysis_options(const std::string& delay_method, std::size_t replicates,
-                                           std::uint64_t seed, bool walk_profile,
-                                           const std::string& force_peak_form, double smoothing_floor) {
+// rupture.analyze's options, by keyword (the package passes each one it was given; docs/python.md
+// names them). A new option is one more branch here, not one more argument down the call chain.
+analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
   analysis::AnalysisOptions options;
-  if (!(smoothing_floor >= 0.0 && smoothing_floor <= 1.0))
-    throw InputError("smoothing_floor",
-                     fmt::format("{} is not a share of the rise to the force peak", smoothing_floor),
-                     "give a value in [0, 1] (0: the noise alone chooses the filter)");
-  options.smoothing_floor_share = smoothing_floor;
-  if (delay_method != "fitted-maxima" && delay_method != "shift-l1")
-    throw InputError("delay_method", "'" + delay_method + "' is not a method",
-                     "use \"fitted-maxima\" or \"shift-l1\"");
-  if (force_peak_form != "smooth" && force_peak_form != "corner")
-    throw InputError("force_peak_form", "'" + force_peak_form + "' is not a form of the force's peak",
-                     "use \"smooth\" or \"corner\"");
-  options.force_peak_form =
-      force_peak_form == "corner" ? analysis::PeakForm::corner : analysis::PeakForm::smooth;
-  options.delay_method =
-      delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
-  if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
-  options.uncertainty.seed = seed;
-  options.uncertainty.walk_profile = walk_profile;
+  for (const auto& [key, value] : given) {
+    const auto name = key.cast<std::string>();
+    if (name == "delay_method") {
+      const auto method = value.cast<std::string>();
+      if (method != "fitted-maxima" && method != "shift-l1")
+        throw InputError("delay_method", "'" + method + "' is not a method",
+                         "use \"fitted-maxima\" or \"shift-l1\"");
+      options.delay_method =
+          method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
+    } else if (name == "replicates") {
+      if (const auto replicates = value.cast<std::size_t>(); replicates > 0)
+        options.uncertainty.replicates = static_cast<int>(replicates);
+    } else if (name == "seed") {
+      options.uncertainty.seed = value.cast<std::uint64_t>();
+    } else if (name == "walk_profile") {
+      options.uncertainty.walk_profile = value.cast<bool>();
+    } else if (name == "force_peak_form") {
+      const auto form = value.cast<std::string>();
+      if (form != "smooth" && form != "corner")
+        throw InputError("force_peak_form", "'" + form + "' is not a form of the force's peak",
+                         "use \"smooth\" or \"corner\"");
+      options.force_peak_form = form == "corner" ? analysis::PeakForm::corner : analysis::PeakForm::smooth;
+    } else if (name == "smoothing_floor") {
+      const auto share = value.cast<double>();
+      if (!(share >= 0.0 && share <= 1.0))
+        throw InputError("smoothing_floor",
+                         fmt::format("{} is not a share of the rise to the force peak", share),
+                         "give a value in [0, 1] (0: the noise alone chooses the filter)");
+      options.smoothing_floor_share = share;
+    } else {
+      throw InputError(
+          "analyze", "'" + name + "' is not an option",
+          "use delay_method, replicates, seed, walk_profile, force_peak_form or smoothing_floor");
+    }
+  }
   return options;
 }
 
 py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, std::vector<double> energy,
                         const std::string& strain_unit, const std::string& force_unit,
-                        const std::string& energy_unit, const std::string& delay_method,
-                        std::size_t replicates, std::uint64_t seed, bool walk_profile,
-                        const std::string& force_peak_form, double smoothing_floor) {
+                        const std::string& energy_unit, const py::kwargs& given) {
   if (strain.size() != force.size() || strain.size() != energy.size())
     throw InputError("analyze",
                      fmt::format("strain, force and energy have {}, {} and {} values", strain.size(),
@@ -373,8 +388,7 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   curve.strain_column = "strain";
   curve.force_column = "force";
   curve.energy_column = "elastic_energy";
-  const auto options =
-      analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form, smoothing_floor);
+  const auto options = analysis_options(given);
   json document;
   {
     py::gil_scoped_release release;
@@ -394,13 +408,10 @@ std::tuple<std::size_t, std::size_t, std::size_t> columns_read(const std::vector
   return {columns.strain, columns.force, columns.energy};
 }
 
-py::dict analyze_file(const std::filesystem::path& curves, const std::string& delay_method,
-                      std::size_t replicates, std::uint64_t seed, bool walk_profile,
-                      const std::string& force_peak_form, double smoothing_floor) {
+py::dict analyze_file(const std::filesystem::path& curves, const py::kwargs& given) {
   analysis::CurveFileInputs inputs;
   inputs.curves = curves;
-  inputs.options =
-      analysis_options(delay_method, replicates, seed, walk_profile, force_peak_form, smoothing_floor);
+  inputs.options = analysis_options(given);
   json document;
   {
     py::gil_scoped_release release;
@@ -498,10 +509,7 @@ PYBIND11_MODULE(_rupture, m) {
   m.def("config_reference", &loading::config_reference);
 
   m.def("analyze_arrays", &analyze_arrays, py::arg("strain"), py::arg("force"), py::arg("energy"),
-        py::arg("strain_unit"), py::arg("force_unit"), py::arg("energy_unit"), py::arg("delay_method"),
-        py::arg("replicates"), py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"),
-        py::arg("smoothing_floor"));
+        py::arg("strain_unit"), py::arg("force_unit"), py::arg("energy_unit"));
   m.def("columns_read", &columns_read, py::arg("header"));
-  m.def("analyze_file", &analyze_file, py::arg("curves"), py::arg("delay_method"), py::arg("replicates"),
-        py::arg("seed"), py::arg("walk_profile"), py::arg("force_peak_form"), py::arg("smoothing_floor"));
+  m.def("analyze_file", &analyze_file, py::arg("curves"));
 }

@@ -267,6 +267,9 @@ def test_analyze_smoothing_floor_matches_the_command_line(tmp_path):
     assert abs(x_p[0.25] - 0.50813) < 0.5 * abs(x_p[0.0] - 0.50813)
     with pytest.raises(rupture.InputError, match="smoothing_floor.*give a value in \\[0, 1\\]"):
         rupture.analyze(curve, smoothing_floor=2.0)
+    # the core takes the options by keyword and refuses one it does not know (package and core out of step)
+    with pytest.raises(rupture.InputError, match="'smoothing' is not an option.*use delay_method"):
+        rupture._rupture.analyze_file(str(curve), smoothing=0.25)
 
 
 def test_analyze_walk_profile_switch_matches_the_command_line(tmp_path):

@@ -93,10 +93,11 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     smoothing_floor: where the noise of F or E_e reads as white, the automatic filter averages over at
     least this share of the rows up to the force peak, where they are 100 or more (default 0: the noise
     alone chooses; 0.25 mends DEM runs at rows every 100-200 steps; rupture analyze --smoothing-floor)."""
+    options = dict(delay_method=str(delay_method), replicates=int(replicates), seed=int(seed),
+                   walk_profile=bool(walk_profile), force_peak_form=str(force_peak_form),
+                   smoothing_floor=float(smoothing_floor))
     if isinstance(data, (str, Path)):
-        return Analysis(_rupture.analyze_file(str(data), delay_method, int(replicates), int(seed),
-                                              bool(walk_profile), str(force_peak_form),
-                                              float(smoothing_floor)))
+        return Analysis(_rupture.analyze_file(str(data), **options))
     if force is None and hasattr(data, "columns"):
         frame = data
         names = [str(c) for c in frame.columns]
@@ -115,5 +116,4 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     return Analysis(_rupture.analyze_arrays(np.asarray(strain, dtype=float).tolist(),
                                             np.asarray(force, dtype=float).tolist(),
                                             np.asarray(energy, dtype=float).tolist(),
-                                            units[0], units[1], units[2], delay_method, int(replicates), int(seed),
-                                            bool(walk_profile), str(force_peak_form), float(smoothing_floor)))
+                                            units[0], units[1], units[2], **options))
