@@ -85,6 +85,7 @@ System::System(const Sample& sample, const Params& params)
       parallel_(sample.size() >= 2048),
       widest_skin_(4.0 * params_.skin) {
   neighbours_.skin = params_.skin;
+  energy_parts_.resize(size());  // a run asks for energies on its row steps: counted from the start
   rebuild_neighbours();
   refresh_forces();
 }
@@ -114,7 +115,6 @@ void System::step(double dt, const PlateMotion& top, bool measure_energies) {
   top_ = top;
   const StepContext step = StepContext::at(dt, 0.5 * dt, top);
   EnergyParts* const parts = measure_energies ? &energy_parts_ : nullptr;
-  if (parts) parts->resize(size());
   // Drift and force pass in one parallel region: on small samples the cost of opening a region is a
   // good part of each pass (docs/performance.md). When the drift leaves the neighbour list stale,
   // the threads leave before the pass, and it runs after the rebuild.

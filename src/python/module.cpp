@@ -327,7 +327,7 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 
 // ---- analysis ----------------------------------------------------------------------------------
 
-// rupture.analyze's options, by keyword (the package passes each one it was given; docs/python.md
+// rupture.analyze's options, by keyword (the package passes all six, with its defaults; docs/python.md
 // names them). A new option is one more branch here, not one more argument down the call chain.
 analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
   analysis::AnalysisOptions options;
@@ -341,10 +341,15 @@ analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
       options.delay_method =
           method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
     } else if (name == "replicates") {
-      if (const auto replicates = value.cast<std::size_t>(); replicates > 0)
-        options.uncertainty.replicates = static_cast<int>(replicates);
+      const auto replicates = value.cast<long long>();
+      if (replicates != 0 && (replicates < 20 || replicates > 100'000))  // as rupture analyze --replicates
+        throw InputError("replicates", fmt::format("{} replicates", replicates),
+                         "give 0 (the default 200) or 20 to 100000");
+      if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
     } else if (name == "seed") {
-      options.uncertainty.seed = value.cast<std::uint64_t>();
+      const auto seed = value.cast<long long>();
+      if (seed < 0) throw InputError("seed", fmt::format("{} is negative", seed), "give a seed >= 0");
+      options.uncertainty.seed = static_cast<std::uint64_t>(seed);
     } else if (name == "walk_profile") {
       options.uncertainty.walk_profile = value.cast<bool>();
     } else if (name == "force_peak_form") {

@@ -128,6 +128,27 @@ TEST(Golden, EnergiesMeasuredByTheStepAreTheSummedOnes) {
     }
     EXPECT_EQ(measuring.state_hash(), summing.state_hash());
     EXPECT_GT(measuring.bond_count() - measuring.intact_bonds(), 100u) << "the pull must reach failure";
+    // A change of state between steps drops the measurement: energies() then sums the new state.
+    const auto same_elastic = [&] {
+      return std::bit_cast<std::uint64_t>(measuring.energies().elastic) ==
+             std::bit_cast<std::uint64_t>(summing.energies().elastic);
+    };
+    std::size_t intact = 0;
+    while (!measuring.bond_intact(intact)) ++intact;
+    const EngineState before_break = measuring.save_state();
+    for (System* system : {&measuring, &summing}) system->break_bond(intact);
+    EXPECT_FALSE(measuring.energies_measured()) << "break_bond";
+    EXPECT_TRUE(same_elastic()) << "break_bond";
+    measuring.step(dt, ramp.at(2001.0 * dt), true);
+    summing.step(dt, ramp.at(2001.0 * dt));
+    for (System* system : {&measuring, &summing}) system->set_velocity(0, {1.0, 2.0, 3.0});
+    EXPECT_FALSE(measuring.energies_measured()) << "set_velocity";
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(measuring.energies().kinetic),
+              std::bit_cast<std::uint64_t>(summing.energies().kinetic));
+    measuring.step(dt, ramp.at(2002.0 * dt), true);
+    for (System* system : {&measuring, &summing}) system->restore_state(before_break, "test");
+    EXPECT_FALSE(measuring.energies_measured()) << "restore_state";
+    EXPECT_TRUE(same_elastic()) << "restore_state";
     EXPECT_GT(breaking_steps, 100) << "steps with breaks re-measure the broken bonds' particles";
   }
 }

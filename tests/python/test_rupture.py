@@ -267,6 +267,10 @@ def test_analyze_smoothing_floor_matches_the_command_line(tmp_path):
     assert abs(x_p[0.25] - 0.50813) < 0.5 * abs(x_p[0.0] - 0.50813)
     with pytest.raises(rupture.InputError, match="smoothing_floor.*give a value in \\[0, 1\\]"):
         rupture.analyze(curve, smoothing_floor=2.0)
+    with pytest.raises(rupture.InputError, match="replicates.*give 0 \\(the default 200\\) or 20 to 100000"):
+        rupture.analyze(curve, replicates=-5)
+    with pytest.raises(rupture.InputError, match="seed.*give a seed >= 0"):
+        rupture.analyze(curve, seed=-1)
     # the core takes the options by keyword and refuses one it does not know (package and core out of step)
     with pytest.raises(rupture.InputError, match="'smoothing' is not an option.*use delay_method"):
         rupture._rupture.analyze_file(str(curve), smoothing=0.25)
