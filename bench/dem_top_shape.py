@@ -10,34 +10,19 @@ the running mean of the elastic energy peaks and where the force first falls bel
 over x_c; and the force's and energy's running means at 0.90 to 1.10 x_c, over their peaks. Standard
 library only.
 """
-import csv
 import sys
+
+from dense_rows import force_top, read_columns, window_means
 
 WIDTH = 40
 FRACTIONS = (0.90, 0.95, 0.98, 1.00, 1.02, 1.04, 1.06, 1.08, 1.10)
 
 
 def running_means(path):
-    try:
-        f = open(path, encoding="utf-8")
-    except OSError as e:
-        sys.exit(f"{path}: cannot read it ({e.strerror}); name a curves.csv of rupture run")
-    with f:
-        reader = csv.reader(line for line in f if not line.startswith("#"))
-        header = next(reader)
-        column = lambda prefix: next((i for i, name in enumerate(header) if name.startswith(prefix)), None)
-        columns = (column("strain["), column("force_top["), column("elastic_energy["))
-        if None in columns:
-            sys.exit(f"{path}: no strain, force_top or elastic_energy column; name a curves.csv of rupture run")
-        rows = [[float(r[i]) for i in columns] for r in reader]
+    rows = read_columns(path, ("strain[", "force_top[", "elastic_energy["))
     if len(rows) < 2 * WIDTH:
         sys.exit(f"{path}: {len(rows)} rows; name a curves.csv written with a row every few steps")
-    sums = [sum(r[k] for r in rows[:WIDTH]) for k in range(3)]
-    means = [[s / WIDTH for s in sums]]
-    for i in range(WIDTH, len(rows)):
-        sums = [sums[k] + rows[i][k] - rows[i - WIDTH][k] for k in range(3)]
-        means.append([s / WIDTH for s in sums])
-    return means
+    return window_means(rows, WIDTH)
 
 
 def main(argv):
@@ -48,10 +33,9 @@ def main(argv):
     print("|---" * (4 + len(FRACTIONS)) + "|")
     for path in argv[1:]:
         means = running_means(path)
-        loading = [m for m in means if 0.3 < m[0] < 0.5]
-        if not loading:
+        top = force_top(means)
+        if top is None:
             sys.exit(f"{path}: no rows between 0.3 and 0.5 % strain; name a run pulled past its peak")
-        top = max(range(len(means)), key=lambda i: means[i][1] if 0.3 < means[i][0] < 0.5 else float("-inf"))
         x_c, F_c = means[top][0], means[top][1]
         energy_top = max(range(len(means)), key=lambda i: means[i][2])
         E_max = means[energy_top][2]

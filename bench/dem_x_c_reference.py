@@ -17,26 +17,18 @@ import os
 import statistics
 import sys
 
+from dense_rows import force_top, read_columns, window_means
+
 
 def reference_x_c(path):
-    with open(path, encoding="utf-8") as f:
-        rows = [line for line in f if not line.startswith("#")]
-    reader = csv.reader(rows)
-    header = next(reader)
-    strain_column = next(i for i, name in enumerate(header) if name.startswith("strain["))
-    force_column = next(i for i, name in enumerate(header) if name.startswith("force_top["))
-    data = [(float(r[strain_column]), float(r[force_column])) for r in reader]
+    rows = read_columns(path, ("strain[", "force_top["))
     peaks = []
     for width in (20, 40):
-        best = None
-        for i in range(len(data) - width + 1):
-            x = sum(p[0] for p in data[i:i + width]) / width
-            force = sum(p[1] for p in data[i:i + width]) / width
-            if 0.3 < x < 0.5 and (best is None or force > best[1]):
-                best = (x, force)
-        if best is None:
+        means = window_means(rows, width)
+        top = force_top(means)
+        if top is None:
             sys.exit(f"{path}: no rows between 0.3 and 0.5 % strain; name a curves.csv of a run pulled past its peak")
-        peaks.append(best[0])
+        peaks.append(means[top][0])
     return statistics.mean(peaks)
 
 
