@@ -40,6 +40,9 @@ struct EnergyParts {
   void measure(std::uint32_t a, const ParticleStore& particles, const BondStore& bonds,
                const NeighbourList& neighbours, const PlateMotion& top, const Params& params);
   Energies total() const;
+  std::size_t bytes() const {
+    return per.capacity() * sizeof(per[0]) + contacts.capacity() * sizeof(contacts[0]);
+  }
 };
 
 inline double kinetic_energy(double mass, double vx, double vy, double vz) {

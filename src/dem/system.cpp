@@ -185,9 +185,7 @@ std::size_t System::state_bytes() const {
 }
 
 std::size_t System::memory_bytes() const {
-  return particles_.bytes() + bonds_.bytes() + neighbours_.bytes() +
-         energy_parts_.per.capacity() * sizeof(energy_parts_.per[0]) +
-         energy_parts_.contacts.capacity() * sizeof(std::uint32_t);
+  return particles_.bytes() + bonds_.bytes() + neighbours_.bytes() + energy_parts_.bytes();
 }
 
 Vec3 System::position(std::size_t sample_index) const {
