@@ -27,6 +27,8 @@ import subprocess
 import sys
 import tempfile
 
+from curve_table import read_table
+
 
 def main(argv):
     if len(argv) < 3:
@@ -38,11 +40,10 @@ def main(argv):
     analyze_options = argv[6:]
     if table and not table.exists():
         table.write_text("dense,spacing,kind,start,accepted,delta_x,delta_x_sd,x_p,x_p_sd,x_c,x_c_sd,rejection\n")
-    lines = [line for line in dense.read_text().splitlines() if line and not line.startswith("#")]
-    names = lines[0].split(",")
-    keep = [i for i, name in enumerate(names) if "_mean[" not in name]
-    header = ",".join(names[i] for i in keep)
-    rows = [[float(v) for i, v in enumerate(line.split(",")) if i in keep] for line in lines[1:]]
+    dense_table = read_table(dense)
+    keep = [i for i, name in enumerate(dense_table.names) if "_mean[" not in name]
+    header = ",".join(dense_table.names[i] for i in keep)
+    rows = [[row[i] for i in keep] for row in dense_table.rows]
     with tempfile.TemporaryDirectory() as tmp:
         curve, out = pathlib.Path(tmp) / "curve.csv", pathlib.Path(tmp) / "analysis.json"
 

@@ -20,6 +20,8 @@ import subprocess
 import sys
 import tempfile
 
+from curve_table import read_table
+
 
 def analyse(rupture, curve, out):
     done = subprocess.run([rupture, "analyze", str(curve), "-o", str(out)], capture_output=True, text=True)
@@ -46,10 +48,9 @@ def main(argv):
         tmp = pathlib.Path(tmp)
         for run in argv[2:]:
             run = pathlib.Path(run)
-            lines = (run / "curves.csv").read_text().splitlines()
-            comments = [line for line in lines if line.startswith("#")]
-            table = [line for line in lines if line and not line.startswith("#")]
-            header, rows = table[0], table[1:]
+            table = read_table(run / "curves.csv")
+            header = ",".join(table.names)
+            rows = [",".join(repr(v) for v in row) for row in table.rows]
             whole = analyse(rupture, run / "curves.csv", tmp / "whole.json")
             cells = [run.name, str(len(rows)),
                      "%.4f (%.4f)" % (whole["delta_x"], whole["sd"]) if whole else "-"]
@@ -57,7 +58,7 @@ def main(argv):
                 phases = []
                 for phase in range(k):
                     curve = tmp / ("phase%d.csv" % phase)
-                    curve.write_text("\n".join(comments + [header] + rows[phase::k]) + "\n")
+                    curve.write_text("\n".join(table.comments + [header] + rows[phase::k]) + "\n")
                     phases.append(analyse(rupture, curve, tmp / "phase.json"))
                 found = [p for p in phases if p and p["accepted"]]
                 cells.append(", ".join(("%.4f" % p["delta_x"]) + ("" if p["accepted"] else " rejected") if p else "-"

@@ -1,41 +1,46 @@
 #!/usr/bin/env python3
 """How a DEM run's force and elastic energy top out (docs/analysis.md, "Known answers with a DEM-like top").
 
-Usage: dem_top_shape.py DENSE_CURVES...
+Usage: dem_top_shape.py [--top-range LOW,HIGH] [--width ROWS] DENSE_CURVES...
 
 DENSE_CURVES are curves.csv files written with a row every few steps (`rupture run CONFIG --set
-output.interval=10`). For each run: x_c, the strain where the running mean of the top force over 40 rows
-peaks (between 0.3 and 0.5 % strain; bench/dem_x_c_reference.py averages that over 20 and 40 rows); where
+output.interval=10`). For each run: x_c, the strain where the running mean of the top force over ROWS rows
+(default 40) peaks (between LOW and HIGH % strain, default 0.3 and 0.5, the default study's;
+bench/dem_x_c_reference.py averages that over 20 and 40 rows); where
 the running mean of the elastic energy peaks and where the force first falls below 0.9 of its peak, both
 over x_c; and the force's and energy's running means at 0.90 to 1.10 x_c, over their peaks. Standard
 library only.
 """
 import sys
 
-from dense_rows import force_top, read_columns, window_means
+from curve_table import read_columns
+from dense_rows import force_top, parse_range, parse_rows, take_option, window_means
 
-WIDTH = 40
 FRACTIONS = (0.90, 0.95, 0.98, 1.00, 1.02, 1.04, 1.06, 1.08, 1.10)
 
 
-def running_means(path):
-    rows = read_columns(path, ("strain[", "force_top[", "elastic_energy["))
-    if len(rows) < 2 * WIDTH:
+def running_means(path, width):
+    rows = read_columns(path, ("strain", "force_top", "elastic_energy"))
+    if len(rows) < 2 * width:
         sys.exit(f"{path}: {len(rows)} rows; name a curves.csv written with a row every few steps")
-    return window_means(rows, WIDTH)
+    return window_means(rows, width)
 
 
 def main(argv):
-    if len(argv) < 2:
+    args = argv[1:]
+    low, high = parse_range(take_option(args, "--top-range", "0.3,0.5"))
+    width = parse_rows(take_option(args, "--width", "40"), "--width")
+    if not args:
         sys.exit(__doc__)
     print("| run | x_c [%] | E_e's peak / x_c | F < 0.9 F_c at / x_c | " +
           " | ".join(f"F, E_e at {f:.2f} x_c" for f in FRACTIONS) + " |")
     print("|---" * (4 + len(FRACTIONS)) + "|")
-    for path in argv[1:]:
-        means = running_means(path)
-        top = force_top(means)
+    for path in args:
+        means = running_means(path, width)
+        top = force_top(means, low, high)
         if top is None:
-            sys.exit(f"{path}: no rows between 0.3 and 0.5 % strain; name a run pulled past its peak")
+            sys.exit(f"{path}: no rows between {low} and {high} % strain; name a run pulled past its peak or "
+                     "give its --top-range")
         x_c, F_c = means[top][0], means[top][1]
         energy_top = max(range(len(means)), key=lambda i: means[i][2])
         E_max = means[energy_top][2]

@@ -2,12 +2,13 @@
 """x_c of DEM runs against a reference taken from their dense rows (docs/analysis.md, "x_c of a loading cut
 by a collapse").
 
-Usage: dem_x_c_reference.py TABLE.csv DENSE_CURVES...
+Usage: dem_x_c_reference.py [--top-range LOW,HIGH] [--widths A,B] TABLE.csv DENSE_CURVES...
 
 DENSE_CURVES are curves.csv files written with a row every few steps (`rupture run CONFIG --set
 output.interval=10`); TABLE.csv is the table bench/dem_row_means.py appends its analyses of those files to.
-Each run's reference x_c is the strain where the running mean of its top force over 20 and over 40 dense
-rows peaks (within 0.3-0.5 %, the mean of the two), so no filter and no peak fit enter it. Printed: each
+Each run's reference x_c is the strain where the running mean of its top force over A and over B dense
+rows peaks (default 20 and 40; within LOW-HIGH % strain, default 0.3-0.5 %, the default study's; the mean
+of the two), so no filter and no peak fit enter it. Printed: each
 run's reference, then per row spacing and kind the accepted analyses' x_c error against it (mean and rms,
 in the strain's unit) and the share whose error lies within their reported sd. Standard library only.
 """
@@ -17,36 +18,42 @@ import os
 import statistics
 import sys
 
-from dense_rows import force_top, read_columns, window_means
+from curve_table import read_columns
+from dense_rows import force_top, parse_range, parse_rows, take_option, window_means
 
 
-def reference_x_c(path):
-    rows = read_columns(path, ("strain[", "force_top["))
+def reference_x_c(path, widths, low, high):
+    rows = read_columns(path, ("strain", "force_top"))
     peaks = []
-    for width in (20, 40):
+    for width in widths:
         means = window_means(rows, width)
-        top = force_top(means)
+        top = force_top(means, low, high)
         if top is None:
-            sys.exit(f"{path}: no rows between 0.3 and 0.5 % strain; name a curves.csv of a run pulled past its peak")
+            sys.exit(f"{path}: no rows between {low} and {high} % strain; name a curves.csv of a run pulled past "
+                     "its peak or give its --top-range")
         peaks.append(means[top][0])
     return statistics.mean(peaks)
 
 
 def main(argv):
-    if len(argv) < 3:
+    args = argv[1:]
+    low, high = parse_range(take_option(args, "--top-range", "0.3,0.5"))
+    widths = [parse_rows(w, "--widths") for w in take_option(args, "--widths", "20,40").split(",")]
+    if len(args) < 2:
         sys.exit(__doc__)
-    references = {os.path.realpath(path): reference_x_c(path) for path in argv[2:]}
+    table = args[0]
+    references = {os.path.realpath(path): reference_x_c(path, widths, low, high) for path in args[1:]}
     for path, x_c in references.items():
         print(f"{path}: reference x_c {x_c:.4f}")
     groups = {}
-    with open(argv[1], newline="", encoding="utf-8") as f:
+    with open(table, newline="", encoding="utf-8") as f:
         for row in csv.DictReader(f):
             dense = os.path.realpath(row["dense"])
             if dense in references and row["accepted"] == "1":
                 error = float(row["x_c"]) - references[dense]
                 groups.setdefault((int(row["spacing"]), row["kind"]), []).append((error, float(row["x_c_sd"])))
     if not groups:
-        sys.exit(f"{argv[1]}: no accepted analysis of the named curves; name the dense files as the table does")
+        sys.exit(f"{table}: no accepted analysis of the named curves; name the dense files as the table does")
     print("| rows every | kind | accepted | x_c error mean | rms | within its sd |")
     print("|---|---|---|---|---|---|")
     for (spacing, kind), values in sorted(groups.items()):

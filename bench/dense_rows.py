@@ -1,24 +1,7 @@
-"""What the dense-run bench scripts share: reading a curves.csv of `rupture run` (comment lines skipped,
-columns found by their name's start, one-line errors naming the file and the fix) and the means of
-its rows over a sliding window, each window summed on its own. Standard library only."""
-import csv
+"""What the dense-run bench scripts share beyond reading the table (bench/curve_table.py): the means of a
+run's rows over a sliding window, each window summed on its own, and the force's top among them.
+Standard library only."""
 import sys
-
-
-def read_columns(path, prefixes):
-    """The columns whose names start with `prefixes` (e.g. "strain[") as rows of floats."""
-    try:
-        f = open(path, encoding="utf-8")
-    except OSError as e:
-        sys.exit(f"{path}: cannot read it ({e.strerror}); name a curves.csv of rupture run")
-    with f:
-        reader = csv.reader(line for line in f if not line.startswith("#"))
-        header = next(reader, [])
-        columns = [next((i for i, name in enumerate(header) if name.startswith(p)), None) for p in prefixes]
-        if None in columns:
-            names = ", ".join(p.rstrip("[") for p in prefixes)
-            sys.exit(f"{path}: no {names} column; name a curves.csv of rupture run")
-        return [[float(r[i]) for i in columns] for r in reader]
 
 
 def window_means(rows, width):
@@ -30,6 +13,36 @@ def window_means(rows, width):
 def force_top(means, low=0.3, high=0.5):
     """The index of the window whose mean top force (column 1) is largest where its mean strain
     (column 0) lies in (low, high) %, or None: a DEM tissue's force peak, away from the ramp's start
-    and the fragments."""
+    and the fragments (0.3-0.5 % holds the default study's; other runs name their own range)."""
     inside = [i for i, m in enumerate(means) if low < m[0] < high]
     return max(inside, key=lambda i: means[i][1]) if inside else None
+
+
+def parse_range(text, option="--top-range"):
+    """'LOW,HIGH' (strain, %) as two floats with LOW < HIGH, or a one-line exit saying what to give."""
+    try:
+        low, high = (float(v) for v in text.split(","))
+    except ValueError:
+        sys.exit(f"{option} {text}: give two strains in %, LOW,HIGH (e.g. 0.3,0.5)")
+    if not low < high:
+        sys.exit(f"{option} {text}: LOW must lie below HIGH")
+    return low, high
+
+
+def take_option(args, name, default):
+    """Removes `name VALUE` from the list args and returns VALUE, or default where it is not there."""
+    if name not in args:
+        return default
+    at = args.index(name)
+    if at + 1 == len(args):
+        sys.exit(f"{name} needs a value")
+    value = args[at + 1]
+    del args[at:at + 2]
+    return value
+
+
+def parse_rows(text, option):
+    """A count of rows (at least 2), or a one-line exit."""
+    if not text.isdigit() or int(text) < 2:
+        sys.exit(f"{option} {text}: give a whole number of rows, at least 2")
+    return int(text)

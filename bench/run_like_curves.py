@@ -22,6 +22,8 @@ import sys
 
 import numpy as np
 
+from curve_table import column_index, read_table
+
 
 def lattice_grid(x, columns):
     """The columns on the lattice of the spacing most rows share (anchored on the first even row)."""
@@ -37,21 +39,16 @@ def lattice_grid(x, columns):
 
 def write_on_lattice(source, target):
     """A comma-separated table with a strain[...] column, '#' comment lines kept, on its rows' lattice."""
-    lines = pathlib.Path(source).read_text(encoding="utf-8").splitlines()
-    comments = [line for line in lines if line.startswith("#")]
-    table = [line for line in lines if line and not line.startswith("#")]
-    header = table[0].split(",")
-    strain = next((i for i, name in enumerate(header) if name.startswith("strain")), None)
-    if strain is None:
-        sys.exit(f"run_like_curves.py: {source}: no strain[...] column in the header; give a curves.csv")
-    rows = np.array([[float(v) for v in line.split(",")] for line in table[1:]])
+    table = read_table(source)
+    strain = column_index(table, source, "strain")
+    rows = np.array(table.rows)
     grid, columns = lattice_grid(rows[:, strain], [rows[:, c] for c in range(rows.shape[1])])
     columns[strain] = grid
     with open(target, "w", encoding="utf-8") as f:
-        f.write("\n".join(comments + [table[0]]) + "\n")
+        f.write("\n".join(table.comments + [",".join(table.names)]) + "\n")
         for row in zip(*columns):
             f.write(",".join(repr(float(v)) for v in row) + "\n")
-    print(f"{target}: {len(table) - 1} rows -> {len(grid)} on the rows' lattice")
+    print(f"{target}: {len(table.rows)} rows -> {len(grid)} on the rows' lattice")
 
 
 def write(path, x, force, energy):

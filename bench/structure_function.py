@@ -14,8 +14,9 @@ curve's own curvature (as L^4). A ringing of period P rows is none of these: its
 near 0 at L = P and its multiples. The shortest lag where S(L) dips below half of S(1), if any, is
 printed as the ringing's period in rows. Standard library only.
 """
-import csv
 import sys
+
+from curve_table import read_columns
 
 LAGS = (1, 2, 3, 4, 6, 8, 12, 16)
 
@@ -48,26 +49,6 @@ def ringing_period(r):
     return dips[0] if dips else None
 
 
-def read_columns(path, names):
-    try:
-        with open(path, newline="", encoding="utf-8-sig") as f:
-            rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
-    except OSError as e:
-        sys.exit(f"{path}: cannot read it ({e.strerror}); name a curves.csv file")
-    header = [h.split("[")[0].strip() for h in rows[0]]
-    columns = []
-    for name in names:
-        if name not in header:
-            sys.exit(f"{path}: no column '{name}' (the header has {', '.join(header)}); "
-                     "choose one with --force / --energy")
-        k = header.index(name)
-        try:
-            columns.append([float(r[k]) for r in rows[1:]])
-        except (ValueError, IndexError):
-            sys.exit(f"{path}: column '{name}' holds a row that is not a number")
-    return columns
-
-
 def main(argv):
     names = {"--force": "force_top", "--energy": "elastic_energy"}
     paths = []
@@ -82,7 +63,7 @@ def main(argv):
     print("| curve | rows | curve's column | " + " | ".join(f"L={lag}" for lag in LAGS) + " | ringing period [rows] |")
     print("|---|---|---|" + "---|" * len(LAGS) + "---|")
     for path in paths:
-        force, energy = read_columns(path, (names["--force"], names["--energy"]))
+        force, energy = zip(*read_columns(path, (names["--force"], names["--energy"]), "a curves.csv file"))
         top = max(range(len(force)), key=lambda i: force[i])
         low, high = int(0.1 * top), int(0.95 * top)
         for label, y in (("F", force), ("E_e", energy)):

@@ -48,6 +48,6 @@ def test_a_table_without_strain_is_refused_with_the_fix(tmp_path):
     try:
         load().write_on_lattice(source, tmp_path / "out.csv")
     except SystemExit as refusal:
-        assert "no strain[...] column" in str(refusal) and "bad.csv" in str(refusal)
+        assert "no column 'strain'" in str(refusal) and "bad.csv" in str(refusal)
     else:
         raise AssertionError("a table without strain was written")
