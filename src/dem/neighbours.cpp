@@ -52,8 +52,9 @@ struct CellTable {
 
 }  // namespace
 
-// Particles binned by a counting sort in storage order into the cell table's buckets; each
-// particle's candidates gathered from the buckets of its 27 cells (each bucket once) and sorted. One
+// Particles binned by a counting sort in storage order into the cell table's buckets, with their
+// positions copied in that order; each particle's candidates gathered from its 27 cells (in a dense
+// grid nine runs of three consecutive buckets; hashed, each bucket once) and sorted. One
 // pass over the particles on purpose: after failure it runs hundreds of times per run, and the
 // binning and the candidate sweep share its buffers.
 void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double max_radius, bool parallel) {
@@ -90,30 +91,50 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
     std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
     for (std::uint32_t a = 0; a < n; ++a) cell_particles_[fill[count[a]]++] = a;
   }
+  // The particles' positions and radii copied into bucket order, so that the sweep below reads each
+  // bucket's particles from consecutive memory rather than gathering them from storage order.
+  binned_.resize(n);
+  for (std::uint32_t q = 0; q < n; ++q) {
+    const std::uint32_t b = cell_particles_[q];
+    binned_[q] = {x[b], y[b], z[b], p.radius[b]};
+  }
 
   // Visits the candidates of particle a (each once; the caller sorts them).
   const auto visit = [&](std::uint32_t a, auto&& take) {
     // Held in registers: `take` stores to memory, through which x[a] would otherwise be read again.
     const double xa = x[a], ya = y[a], za = z[a], ra = p.radius[a], margin = skin;
+    const auto sweep = [&](std::uint32_t from, std::uint32_t to) {
+      for (std::uint32_t q = from; q < to; ++q) {
+        const Binned& c = binned_[q];
+        const double dx = c.x - xa, dy = c.y - ya, dz = c.z - za;
+        const double cut = ra + c.radius + margin;
+        if (dx * dx + dy * dy + dz * dz < cut * cut) {
+          const std::uint32_t b = cell_particles_[q];
+          if (b != a && !bonds.linked(a, b)) take(b);
+        }
+      }
+    };
     const std::int64_t cx = table.coord(xa, 0), cy = table.coord(ya, 1), cz = table.coord(za, 2);
-    std::int64_t seen[27];
+    if (!table.hashed) {
+      // In a dense grid the three cells of a row along x are consecutive buckets: one sweep each.
+      const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, table.dims[0] - 1);
+      for (std::int64_t iz = std::max<std::int64_t>(cz - 1, 0); iz <= std::min(cz + 1, table.dims[2] - 1);
+           ++iz)
+        for (std::int64_t iy = std::max<std::int64_t>(cy - 1, 0); iy <= std::min(cy + 1, table.dims[1] - 1);
+             ++iy)
+          sweep(cell_start_[std::size_t(table.bucket(x0, iy, iz))],
+                cell_start_[std::size_t(table.bucket(x1, iy, iz)) + 1]);
+      return;
+    }
+    std::int64_t seen[27];  // distinct cells may share a bucket: each bucket once
     int distinct = 0;
     for (std::int64_t iz = cz - 1; iz <= cz + 1; ++iz)
       for (std::int64_t iy = cy - 1; iy <= cy + 1; ++iy)
         for (std::int64_t ix = cx - 1; ix <= cx + 1; ++ix) {
           const std::int64_t c = table.bucket(ix, iy, iz);
-          if (c < 0) continue;
-          if (table.hashed) {  // distinct cells may share a bucket; dense cells never do
-            if (std::find(seen, seen + distinct, c) != seen + distinct) continue;
-            seen[distinct++] = c;
-          }
-          for (std::uint32_t q = cell_start_[std::size_t(c)]; q < cell_start_[std::size_t(c) + 1]; ++q) {
-            const std::uint32_t b = cell_particles_[q];
-            if (b == a) continue;
-            const double dx = x[b] - xa, dy = y[b] - ya, dz = z[b] - za;
-            const double cut = ra + p.radius[b] + margin;
-            if (dx * dx + dy * dy + dz * dz < cut * cut && !bonds.linked(a, b)) take(b);
-          }
+          if (std::find(seen, seen + distinct, c) != seen + distinct) continue;
+          seen[distinct++] = c;
+          sweep(cell_start_[std::size_t(c)], cell_start_[std::size_t(c) + 1]);
         }
   };
   // One pass: each thread gathers its particles' candidates, each particle's sorted; then the slices
@@ -178,6 +199,7 @@ std::size_t NeighbourList::bytes() const {
   std::size_t total = (xb.capacity() + yb.capacity() + zb.capacity()) * sizeof(double);
   for (const auto* v : {&start, &count, &list, &cell_start_, &cell_particles_, &found_thread_, &found_at_})
     total += v->capacity() * sizeof(std::uint32_t);
+  total += binned_.capacity() * sizeof(Binned);
   for (const auto& found : found_) total += found.capacity() * sizeof(std::uint32_t);
   return total;
 }

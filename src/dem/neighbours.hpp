@@ -43,6 +43,10 @@ struct NeighbourList {
   void insert_sorted(std::uint32_t a, std::uint32_t b);
 
   std::vector<std::uint32_t> cell_start_, cell_particles_;
+  struct Binned {
+    double x, y, z, radius;  // mm
+  };
+  std::vector<Binned> binned_;  // cell_particles_' positions and radii, in the same (bucket) order
   // Per thread, the candidates of its particles found in one pass; per particle, where they lie.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_thread_, found_at_;
