@@ -4,27 +4,27 @@
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
 // Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-31|all]
-// [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between|brittle: the noise
-// groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do; white-between:
-// white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and 0.14 %; brittle:
-// curves cut by a sharp collapse at 1.03-1.5 x_c; run-like: bundles recorded as rupture run records a
-// tissue, F ringing, rows as single samples or means over their interval; dem-like: the same with F sagging
-// from its peak to a collapse at 1.02-1.06 x_c, as a tissue's does; calibration_set.hpp]
-// [walk-profile (the default): random-walk steps that follow the curve (BootstrapOptions::walk_profile) |
-// stationary-walk: one step along the curve | corner: walk-profile with the force's top fitted as a corner
-// at a collapse, AnalysisOptions::force_peak_form | rule-alone: walk-profile without the smoothing floor,
-// AnalysisOptions::smoothing_floor_share = 0]. The per-curve file holds each curve's truth, estimates,
-// intervals, the bootstrap's biases, the peak fits' own errors (the systematic terms in x_c's and x_p's sd)
-// and the noise the analysis measured on F and E_e as a share of their maxima, with its white and random-walk
-// parts (per sample and per step) apart (files before held-out 22 lack the first two columns, before
-// held-out-22-edge the other four, before the dem-like groups the maxima's smoothing shifts, last). `noise`
-// is the kind whose factors the intervals take (scored_as_random_walk), `noise_read` the kind read over the
-// whole record (reads_random_walk; from held-out 24 on; before, `noise` was that), from which
-// bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks them (on a
-// held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and run once
-// for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6 checks the
-// white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind reading, held-out 9 and 10 the
-// energy-rate search's edge).
+// [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between|brittle|brittle-close:
+// the noise groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do;
+// white-between: white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and
+// 0.14 %; brittle: curves cut by a sharp collapse at 1.03-1.5 x_c; brittle-close: the same cut at 1.0-1.02
+// x_c; run-like: bundles recorded as rupture run records a tissue, F ringing, rows as single samples or means
+// over their interval; dem-like: the same with F sagging from its peak to a collapse at 1.02-1.06 x_c, as a
+// tissue's does; calibration_set.hpp] [walk-profile (the default): random-walk steps that follow the curve
+// (BootstrapOptions::walk_profile) | stationary-walk: one step along the curve | corner: walk-profile with
+// the force's top fitted as a corner at a collapse, AnalysisOptions::force_peak_form | rule-alone:
+// walk-profile without the smoothing floor, AnalysisOptions::smoothing_floor_share = 0]. The per-curve file
+// holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak fits' own errors (the
+// systematic terms in x_c's and x_p's sd) and the noise the analysis measured on F and E_e as a share of
+// their maxima, with its white and random-walk parts (per sample and per step) apart (files before held-out
+// 22 lack the first two columns, before held-out-22-edge the other four, before the dem-like groups the
+// maxima's smoothing shifts, last). `noise` is the kind whose factors the intervals take
+// (scored_as_random_walk), `noise_read` the kind read over the whole record (reads_random_walk; from held-out
+// 24 on; before, `noise` was that), from which bench/interval_scales.py learns the per-level interval scales
+// (on the tuning set) and checks them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed
+// before the change it checks and run once for it; docs/analysis.md, "Calibration", lists them in the order
+// they were used (held-out 6 checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a
+// noise-kind reading, held-out 9 and 10 the energy-rate search's edge).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -60,11 +60,12 @@ int main(int argc, char** argv) {
   }
   if (kinds != "all" && kinds != "white" && kinds != "bundle" && kinds != "mixed" &&
       kinds != "white-between" && kinds != "white-low" && kinds != "white-low-between" &&
-      kinds != "brittle" && kinds != "run-like" && kinds != "dem-like") {
-    std::fprintf(stderr,
-                 "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed, "
-                 "white-between, white-low, white-low-between, brittle, run-like or dem-like\n",
-                 kinds.c_str());
+      kinds != "brittle" && kinds != "brittle-close" && kinds != "run-like" && kinds != "dem-like") {
+    std::fprintf(
+        stderr,
+        "analysis_calibration: unknown noise groups '%s'; name all, white, bundle, mixed, "
+        "white-between, white-low, white-low-between, brittle, brittle-close, run-like or dem-like\n",
+        kinds.c_str());
     return 2;
   }
   std::ofstream per_curve;
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
                       : kinds == "white-low"         ? low_noise_groups()
                       : kinds == "white-low-between" ? low_between_noise_groups()
                       : kinds == "brittle"           ? brittle_noise_groups()
+                      : kinds == "brittle-close"     ? brittle_close_noise_groups()
                       : kinds == "run-like"          ? run_like_noise_groups()
                       : kinds == "dem-like"          ? dem_like_noise_groups()
                                                      : noise_groups();
@@ -136,7 +138,7 @@ int main(int argc, char** argv) {
           per_curve << ",,,,,,," << t.x_c << ",,," << t.x_p << ",,,,,,,,,,,,,";
         }
         per_curve << ',' << noise_name(reads_random_walk(r)) << ',';
-        if (g.collapse) per_curve << collapse_cut(s, seed);
+        if (g.collapse) per_curve << collapse_cut(s, seed, g.cut_from, g.cut_span);
         if (g.run.collapse) per_curve << run_like_cut(s, seed, g.run.sag);
         per_curve << ',';
         if (r.collapse_onset) per_curve << *r.collapse_onset;
