@@ -881,6 +881,43 @@ TEST(CalibrationSets, ABrittleCurveFollowsTheShapeToItsCutAndThenFalls) {
 // The run-like groups' curves (calibration_set.hpp): rows on the run's step lattice, each the step's
 // values or the means of 20 samples over the row's interval; F rings at the level asked for over
 // [0.7, 0.95] x_c about the bundle's own force; a sample that comes apart falls towards 7 % of F and
+// The brittle-close groups: the same three noises, the collapse drawn within 2 % past the force peak;
+// the curve follows the shape to that cut.
+TEST(CalibrationSets, ABrittleCloseCurveIsCutWithinTwoPercentPastItsPeak) {
+  using namespace calibration;
+  const auto close = brittle_close_noise_groups();
+  const auto brittle = brittle_noise_groups();
+  ASSERT_EQ(close.size(), brittle.size());
+  for (std::size_t g = 0; g < close.size(); ++g) {
+    EXPECT_EQ(close[g].name, "brittle close" + brittle[g].name.substr(std::string("brittle").size()));
+    EXPECT_EQ(close[g].level, brittle[g].level);
+    EXPECT_EQ(close[g].fibers, brittle[g].fibers);
+    EXPECT_EQ(close[g].force_white, brittle[g].force_white);
+  }
+  const Shape s = weibull(3);
+  double lowest = 2.0, highest = 0.0;
+  for (std::uint64_t seed = 17; seed < 40017; seed += 1000) {
+    const double b = collapse_cut(s, seed, close[0].cut_from, close[0].cut_span) / truth(s).x_c;
+    lowest = std::min(lowest, b);
+    highest = std::max(highest, b);
+  }
+  EXPECT_GE(lowest, 1.0);
+  EXPECT_LE(highest, 1.02);
+  EXPECT_GT(highest - lowest, 0.015) << "the cuts spread over the range";
+  NoiseGroup noise_free = close[1];
+  noise_free.level = 0.0;
+  const CalibrationCase curve_case{s, 1000, 7017};
+  const Curve c = curve_case.draw(noise_free);
+  const double cut = collapse_cut(s, curve_case.seed, noise_free.cut_from, noise_free.cut_span);
+  const double step = c.strain[1] - c.strain[0];
+  for (std::size_t i = 0; i < c.strain.size(); ++i) {
+    const double x = c.strain[i];
+    ASSERT_NEAR(c.force[i],
+                x <= cut ? force_of(s, x) : force_of(s, cut) * std::exp(-(x - cut) / (3.0 * step)), 1e-12)
+        << i;
+  }
+}
+
 // 30 % of E_e at its cut.
 TEST(CalibrationSets, ARunLikeCurveHasTheRunsRowsItsRingingAndItsCollapse) {
   using namespace calibration;
