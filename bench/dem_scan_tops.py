@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """How the points of a scan top out, and x_c's error there with either form of the force's peak
-(docs/analysis.md, "The scan's points: three ways to top out").
+(docs/analysis.md, "The study scan's points: two ways to top out").
 
 Usage: dem_scan_tops.py RUPTURE SCAN_CONFIG OUT POINT:BASE [POINT:BASE ...]
 
@@ -52,8 +52,10 @@ def run(command, log):
 
 
 def script(name, *args):
-    return subprocess.run([sys.executable, str(BENCH / name), *map(str, args)], capture_output=True, text=True,
-                          check=True).stdout
+    done = subprocess.run([sys.executable, str(BENCH / name), *map(str, args)], capture_output=True, text=True)
+    if done.returncode != 0:
+        sys.exit(f"{name}: {done.stderr.strip() or done.stdout.strip()}")
+    return done.stdout
 
 
 def main(argv):
@@ -74,7 +76,8 @@ def main(argv):
         spacing = entry["output_interval"]
         if spacing % base or 200 % base:
             sys.exit(f"point {point}: BASE {base} must divide its row interval {spacing} and 200 steps")
-        attempt = sorted((out / "scan" / entry["folder"]).glob("attempt-*"))[-1]
+        attempts = (out / "scan" / entry["folder"]).glob("attempt-*")
+        attempt = max(attempts, key=lambda folder: int(folder.name.split("-")[1]))
         analysis = json.loads((attempt / "analysis.json").read_text(encoding="utf-8"))
         x_c = analysis["x_c"]["value"]
         onset = (analysis.get("collapse_onset") or {}).get("value")

@@ -14,7 +14,7 @@ library only.
 import sys
 
 from curve_table import read_columns
-from dense_rows import force_top, parse_range, parse_rows, take_option, window_means
+from dense_rows import force_top, parse_range, parse_rows, no_other_options, take_option, window_means
 
 FRACTIONS = (0.90, 0.95, 0.98, 1.00, 1.02, 1.04, 1.06, 1.08, 1.10)
 
@@ -30,6 +30,7 @@ def main(argv):
     args = argv[1:]
     low, high = parse_range(take_option(args, "--top-range", "0.3,0.5"))
     width = parse_rows(take_option(args, "--width", "40"), "--width")
+    no_other_options(args, ("--top-range", "--width"))
     if not args:
         sys.exit(__doc__)
     print("| run | x_c [%] | E_e's peak / x_c | F < 0.9 F_c at / x_c | " +

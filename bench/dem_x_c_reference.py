@@ -19,7 +19,7 @@ import statistics
 import sys
 
 from curve_table import read_columns
-from dense_rows import force_top, parse_range, parse_rows, take_option, window_means
+from dense_rows import force_top, parse_range, parse_rows, no_other_options, take_option, window_means
 
 
 def reference_x_c(path, widths, low, high):
@@ -39,6 +39,7 @@ def main(argv):
     args = argv[1:]
     low, high = parse_range(take_option(args, "--top-range", "0.3,0.5"))
     widths = [parse_rows(w, "--widths") for w in take_option(args, "--widths", "20,40").split(",")]
+    no_other_options(args, ("--top-range", "--widths"))
     if len(args) < 2:
         sys.exit(__doc__)
     table = args[0]

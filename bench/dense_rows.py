@@ -46,3 +46,10 @@ def parse_rows(text, option):
     if not text.isdigit() or int(text) < 2:
         sys.exit(f"{option} {text}: give a whole number of rows, at least 2")
     return int(text)
+
+
+def no_other_options(args, known):
+    """A one-line exit where args still hold an option (--name) that the script does not take."""
+    stray = [a for a in args if a.startswith("--")]
+    if stray:
+        sys.exit(f"{stray[0]}: not an option here; the options are {', '.join(known)}")

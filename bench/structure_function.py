@@ -63,7 +63,8 @@ def main(argv):
     print("| curve | rows | curve's column | " + " | ".join(f"L={lag}" for lag in LAGS) + " | ringing period [rows] |")
     print("|---|---|---|" + "---|" * len(LAGS) + "---|")
     for path in paths:
-        force, energy = zip(*read_columns(path, (names["--force"], names["--energy"]), "a curves.csv file"))
+        force, energy = zip(*read_columns(path, (names["--force"], names["--energy"]), "a curves.csv file",
+                                          "choose one with --force / --energy"))
         top = max(range(len(force)), key=lambda i: force[i])
         low, high = int(0.1 * top), int(0.95 * top)
         for label, y in (("F", force), ("E_e", energy)):

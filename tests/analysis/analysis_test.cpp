@@ -878,9 +878,6 @@ TEST(CalibrationSets, ABrittleCurveFollowsTheShapeToItsCutAndThenFalls) {
   EXPECT_NEAR(std::sqrt(square / static_cast<double>(after)), 0.01 * truth(s).F_c, 0.003 * truth(s).F_c);
 }
 
-// The run-like groups' curves (calibration_set.hpp): rows on the run's step lattice, each the step's
-// values or the means of 20 samples over the row's interval; F rings at the level asked for over
-// [0.7, 0.95] x_c about the bundle's own force; a sample that comes apart falls towards 7 % of F and
 // The brittle-close groups: the same three noises, the collapse drawn within 2 % past the force peak;
 // the curve follows the shape to that cut.
 TEST(CalibrationSets, ABrittleCloseCurveIsCutWithinTwoPercentPastItsPeak) {
@@ -918,6 +915,9 @@ TEST(CalibrationSets, ABrittleCloseCurveIsCutWithinTwoPercentPastItsPeak) {
   }
 }
 
+// The run-like groups' curves (calibration_set.hpp): rows on the run's step lattice, each the step's
+// values or the means of 20 samples over the row's interval; F rings at the level asked for over
+// [0.7, 0.95] x_c about the bundle's own force; a sample that comes apart falls towards 7 % of F and
 // 30 % of E_e at its cut.
 TEST(CalibrationSets, ARunLikeCurveHasTheRunsRowsItsRingingAndItsCollapse) {
   using namespace calibration;

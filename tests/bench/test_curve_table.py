@@ -33,9 +33,9 @@ def test_malformed_tables_are_refused_naming_the_file_and_the_row(tmp_path):
     table_module = bench_scripts.load("curve_table")
     short = write(tmp_path, "strain[%],force_top[N]\n0,1\n0.1\n", "short.csv")
     assert refusal(lambda: table_module.read_table(short)) == (
-        f"{short}: data row 2 has 1 fields where the header has 2; name a curves.csv of rupture run")
+        f"{short}: line 3 has 1 fields where the header has 2; name a curves.csv of rupture run")
     word = write(tmp_path, "strain[%],force_top[N]\n0,1\n0.1,x\n", "word.csv")
-    assert "data row 2 holds a field that is not a number" in refusal(lambda: table_module.read_table(word))
+    assert refusal(lambda: table_module.read_table(word)).startswith(f"{word}: line 3, column 'force_top[N]': 'x' is not")
     assert "no header line" in refusal(lambda: table_module.read_table(write(tmp_path, "# only\n", "empty.csv")))
     assert "cannot read it" in refusal(lambda: table_module.read_table(tmp_path / "missing.csv"))
     good = write(tmp_path, "strain[%],force_top[N]\n0,1\n", "good.csv")
