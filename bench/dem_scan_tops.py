@@ -2,47 +2,31 @@
 """How the points of a scan top out, and x_c's error there with either form of the force's peak
 (docs/analysis.md, "The study scan's points: two ways to top out").
 
-Usage: dem_scan_tops.py RUPTURE SCAN_CONFIG OUT POINT:BASE [POINT:BASE ...]
+Usage: PYTHONPATH=build/release/python dem_scan_tops.py RUPTURE SCAN_CONFIG OUT POINT:BASE [POINT:BASE ...]
 
 Each POINT (its index in the scan) is run as the scan runs it (`rupture scan SCAN_CONFIG --task-index
-POINT -o OUT/scan`), then again from the exact config that run wrote (its run.json) with a curve row
-every BASE steps (OUT/dense-POINT). BASE must divide the point's own row interval and 200 and 400
+POINT -o OUT/scan`), then again from the exact config that run wrote (its run.json), through the
+Python package's rupture.run, with a curve row every BASE steps (OUT/dense-POINT). BASE must divide the point's own row interval and 200 and 400
 steps. From the dense run: the top's shape (bench/dem_top_shape.py, running means over 400 steps, the
 force's top sought within 0.7-1.3 times the scan's own x_c), then the scan's row spacing rebuilt at
 several starts as samples and as means and analysed with the default form of the force's peak and
 with `--force-peak-form corner` (bench/dem_row_means.py), scored against the dense reference x_c
 (bench/dem_x_c_reference.py, running means over 200 and 400 steps), beside where the scan's own
 analysis found the collapse's onset. Tables go to standard output,
-the per-analysis tables to OUT/x_c-smooth.csv and OUT/x_c-corner.csv. Standard library only.
+the per-analysis tables to OUT/x_c-smooth.csv and OUT/x_c-corner.csv. Needs the rupture package.
 """
 import json
 import pathlib
 import subprocess
 import sys
 
+try:
+    import rupture as rupture_package
+except ImportError:
+    sys.exit("dem_scan_tops.py: the rupture Python package is not importable; put the build's python folder "
+             "on PYTHONPATH (e.g. PYTHONPATH=build/release/python)")
+
 BENCH = pathlib.Path(__file__).resolve().parent
-
-
-def toml_value(value):
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return json.dumps(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(toml_value(v) for v in value) + "]"
-    return repr(value)
-
-
-def dense_config(run_json, folder, base):
-    """The run's exact config (run.json's "config") as TOML, with rows every `base` steps into `folder`."""
-    config = json.loads(run_json.read_text(encoding="utf-8"))["config"]
-    config["output"].update(interval=base, folder=str(folder))
-    lines = []
-    for section, keys in config.items():
-        lines.append(f"[{section}]")
-        # An empty path means "none" in run.json; the config leaves such a key out.
-        lines += [f"{key} = {toml_value(value)}" for key, value in keys.items() if value != ""]
-    return "\n".join(lines) + "\n"
 
 
 def run(command, log):
@@ -82,9 +66,9 @@ def main(argv):
         x_c = analysis["x_c"]["value"]
         onset = (analysis.get("collapse_onset") or {}).get("value")
         dense = out / f"dense-{point}"
-        config = out / f"dense-{point}.toml"
-        config.write_text(dense_config(attempt / "run.json", dense, base), encoding="utf-8")
-        run([rupture, "run", config], out / f"dense-{point}.log")
+        # The run's exact config, as run.json holds it, with rows every BASE steps.
+        config = json.loads((attempt / "run.json").read_text(encoding="utf-8"))["config"]
+        rupture_package.run(config, out=dense, set=[f"output.interval={base}", "run.threads=2"], overwrite=True)
         curves = dense / "curves.csv"
         top_range = f"{0.7 * x_c},{1.3 * x_c}"
         shapes.append((entry, script("dem_top_shape.py", "--top-range", top_range, "--width", 400 // base,

@@ -14,7 +14,7 @@ library only.
 import sys
 
 from curve_table import read_columns
-from dense_rows import force_top, parse_range, parse_rows, no_other_options, take_option, window_means
+from dense_rows import found_force_top, no_other_options, parse_rows, take_option, take_top_range, window_means
 
 FRACTIONS = (0.90, 0.95, 0.98, 1.00, 1.02, 1.04, 1.06, 1.08, 1.10)
 
@@ -28,7 +28,7 @@ def running_means(path, width):
 
 def main(argv):
     args = argv[1:]
-    low, high = parse_range(take_option(args, "--top-range", "0.3,0.5"))
+    low, high = take_top_range(args)
     width = parse_rows(take_option(args, "--width", "40"), "--width")
     no_other_options(args, ("--top-range", "--width"))
     if not args:
@@ -38,10 +38,7 @@ def main(argv):
     print("|---" * (4 + len(FRACTIONS)) + "|")
     for path in args:
         means = running_means(path, width)
-        top = force_top(means, low, high)
-        if top is None:
-            sys.exit(f"{path}: no rows between {low} and {high} % strain; name a run pulled past its peak or "
-                     "give its --top-range")
+        top = found_force_top(means, low, high, path)
         x_c, F_c = means[top][0], means[top][1]
         energy_top = max(range(len(means)), key=lambda i: means[i][2])
         E_max = means[energy_top][2]

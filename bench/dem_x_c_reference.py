@@ -19,7 +19,7 @@ import statistics
 import sys
 
 from curve_table import read_columns
-from dense_rows import force_top, parse_range, parse_rows, no_other_options, take_option, window_means
+from dense_rows import found_force_top, no_other_options, parse_rows, take_option, take_top_range, window_means
 
 
 def reference_x_c(path, widths, low, high):
@@ -27,17 +27,13 @@ def reference_x_c(path, widths, low, high):
     peaks = []
     for width in widths:
         means = window_means(rows, width)
-        top = force_top(means, low, high)
-        if top is None:
-            sys.exit(f"{path}: no rows between {low} and {high} % strain; name a curves.csv of a run pulled past "
-                     "its peak or give its --top-range")
-        peaks.append(means[top][0])
+        peaks.append(means[found_force_top(means, low, high, path)][0])
     return statistics.mean(peaks)
 
 
 def main(argv):
     args = argv[1:]
-    low, high = parse_range(take_option(args, "--top-range", "0.3,0.5"))
+    low, high = take_top_range(args)
     widths = [parse_rows(w, "--widths") for w in take_option(args, "--widths", "20,40").split(",")]
     no_other_options(args, ("--top-range", "--widths"))
     if len(args) < 2:

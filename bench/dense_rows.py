@@ -18,6 +18,20 @@ def force_top(means, low=0.3, high=0.5):
     return max(inside, key=lambda i: means[i][1]) if inside else None
 
 
+def found_force_top(means, low, high, path):
+    """force_top, or a one-line exit naming the file and the fix where no window lies in the range."""
+    top = force_top(means, low, high)
+    if top is None:
+        sys.exit(f"{path}: no rows between {low} and {high} % strain; name a curves.csv of a run pulled past "
+                 "its peak or give its --top-range")
+    return top
+
+
+def take_top_range(args):
+    """--top-range LOW,HIGH taken from args (default 0.3,0.5 %, the default study's)."""
+    return parse_range(take_option(args, "--top-range", "0.3,0.5"))
+
+
 def parse_range(text, option="--top-range"):
     """'LOW,HIGH' (strain, %) as two floats with LOW < HIGH, or a one-line exit saying what to give."""
     try:
