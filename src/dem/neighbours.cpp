@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <numeric>
+#include <span>
 
 namespace rupture::dem {
 
@@ -50,6 +51,72 @@ struct CellTable {
   }
 };
 
+// The particles' bounding box (mm); false where a position is not finite.
+bool bounding_box(const HotParticles& p, double (&lo)[3], double (&hi)[3]) {
+  lo[0] = hi[0] = p.x[0], lo[1] = hi[1] = p.y[0], lo[2] = hi[2] = p.z[0];
+  for (std::size_t a = 0; a < p.x.size(); ++a) {
+    if (!std::isfinite(p.x[a] + p.y[a] + p.z[a])) return false;
+    lo[0] = std::min(lo[0], p.x[a]);
+    hi[0] = std::max(hi[0], p.x[a]);
+    lo[1] = std::min(lo[1], p.y[a]);
+    hi[1] = std::max(hi[1], p.y[a]);
+    lo[2] = std::min(lo[2], p.z[a]);
+    hi[2] = std::max(hi[2], p.z[a]);
+  }
+  return true;
+}
+
+// What the candidate sweep reads: the table, each bucket's slice [start[b], start[b + 1]) of the
+// particles in bucket order, their storage indices and their positions and radii.
+struct Bins {
+  const CellTable& table;
+  std::span<const std::uint32_t> start, particles;
+  std::span<const NeighbourList::Binned> binned;
+};
+
+// Appends the candidates of storage particle a, at `at`, to `found`: the unbonded particles of its 27
+// cells within r_a + r_b + margin, each once and unsorted. In a dense grid the three cells of a row
+// along x are consecutive buckets, so each row is one sweep over consecutive memory; hashed, distinct
+// cells may share a bucket, and each bucket is swept once.
+void gather_candidates(std::uint32_t a, const NeighbourList::Binned at, const Bins& bins,
+                       const BondStore& bonds, double margin, std::vector<std::uint32_t>& found) {
+  // Local copies of the views: `found` grows in memory, through which they would otherwise be reread.
+  const auto binned = bins.binned;
+  const auto particles = bins.particles;
+  const auto sweep = [&](std::uint32_t from, std::uint32_t to) {
+    for (std::uint32_t q = from; q < to; ++q) {
+      const NeighbourList::Binned& c = binned[q];
+      const double dx = c.x - at.x, dy = c.y - at.y, dz = c.z - at.z;
+      const double cut = at.radius + c.radius + margin;
+      if (dx * dx + dy * dy + dz * dz < cut * cut) {
+        const std::uint32_t b = particles[q];
+        if (b != a && !bonds.linked(a, b)) found.push_back(b);
+      }
+    }
+  };
+  const CellTable& table = bins.table;
+  const std::int64_t cx = table.coord(at.x, 0), cy = table.coord(at.y, 1), cz = table.coord(at.z, 2);
+  if (!table.hashed) {
+    const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, table.dims[0] - 1);
+    for (std::int64_t iz = std::max<std::int64_t>(cz - 1, 0); iz <= std::min(cz + 1, table.dims[2] - 1); ++iz)
+      for (std::int64_t iy = std::max<std::int64_t>(cy - 1, 0); iy <= std::min(cy + 1, table.dims[1] - 1);
+           ++iy)
+        sweep(bins.start[std::size_t(table.bucket(x0, iy, iz))],
+              bins.start[std::size_t(table.bucket(x1, iy, iz)) + 1]);
+    return;
+  }
+  std::int64_t seen[27];
+  int distinct = 0;
+  for (std::int64_t iz = cz - 1; iz <= cz + 1; ++iz)
+    for (std::int64_t iy = cy - 1; iy <= cy + 1; ++iy)
+      for (std::int64_t ix = cx - 1; ix <= cx + 1; ++ix) {
+        const std::int64_t c = table.bucket(ix, iy, iz);
+        if (std::find(seen, seen + distinct, c) != seen + distinct) continue;
+        seen[distinct++] = c;
+        sweep(bins.start[std::size_t(c)], bins.start[std::size_t(c) + 1]);
+      }
+}
+
 }  // namespace
 
 // Particles binned by a counting sort in storage order into the cell table's buckets, with their
@@ -63,16 +130,8 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
   const auto& y = p.y;
   const auto& z = p.z;
   for (auto* v : {&xb, &yb, &zb}) v->resize(n);  // sized even when the build gives up below
-  double lo[3] = {x[0], y[0], z[0]}, hi[3] = {x[0], y[0], z[0]};
-  for (std::uint32_t a = 0; a < n; ++a) {
-    if (!std::isfinite(x[a] + y[a] + z[a])) return;
-    lo[0] = std::min(lo[0], x[a]);
-    hi[0] = std::max(hi[0], x[a]);
-    lo[1] = std::min(lo[1], y[a]);
-    hi[1] = std::max(hi[1], y[a]);
-    lo[2] = std::min(lo[2], z[a]);
-    hi[2] = std::max(hi[2], z[a]);
-  }
+  double lo[3], hi[3];
+  if (!bounding_box(p, lo, hi)) return;
   const CellTable table(lo, hi, 2.0 * max_radius + skin, n);
   const auto bucket_of = [&](std::uint32_t a) {
     return std::uint32_t(table.bucket(table.coord(x[a], 0), table.coord(y[a], 1), table.coord(z[a], 2)));
@@ -99,44 +158,7 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
     binned_[q] = {x[b], y[b], z[b], p.radius[b]};
   }
 
-  // Visits the candidates of particle a (each once; the caller sorts them).
-  const auto visit = [&](std::uint32_t a, auto&& take) {
-    // Held in registers: `take` stores to memory, through which x[a] would otherwise be read again.
-    const double xa = x[a], ya = y[a], za = z[a], ra = p.radius[a], margin = skin;
-    const auto sweep = [&](std::uint32_t from, std::uint32_t to) {
-      for (std::uint32_t q = from; q < to; ++q) {
-        const Binned& c = binned_[q];
-        const double dx = c.x - xa, dy = c.y - ya, dz = c.z - za;
-        const double cut = ra + c.radius + margin;
-        if (dx * dx + dy * dy + dz * dz < cut * cut) {
-          const std::uint32_t b = cell_particles_[q];
-          if (b != a && !bonds.linked(a, b)) take(b);
-        }
-      }
-    };
-    const std::int64_t cx = table.coord(xa, 0), cy = table.coord(ya, 1), cz = table.coord(za, 2);
-    if (!table.hashed) {
-      // In a dense grid the three cells of a row along x are consecutive buckets: one sweep each.
-      const std::int64_t x0 = std::max<std::int64_t>(cx - 1, 0), x1 = std::min(cx + 1, table.dims[0] - 1);
-      for (std::int64_t iz = std::max<std::int64_t>(cz - 1, 0); iz <= std::min(cz + 1, table.dims[2] - 1);
-           ++iz)
-        for (std::int64_t iy = std::max<std::int64_t>(cy - 1, 0); iy <= std::min(cy + 1, table.dims[1] - 1);
-             ++iy)
-          sweep(cell_start_[std::size_t(table.bucket(x0, iy, iz))],
-                cell_start_[std::size_t(table.bucket(x1, iy, iz)) + 1]);
-      return;
-    }
-    std::int64_t seen[27];  // distinct cells may share a bucket: each bucket once
-    int distinct = 0;
-    for (std::int64_t iz = cz - 1; iz <= cz + 1; ++iz)
-      for (std::int64_t iy = cy - 1; iy <= cy + 1; ++iy)
-        for (std::int64_t ix = cx - 1; ix <= cx + 1; ++ix) {
-          const std::int64_t c = table.bucket(ix, iy, iz);
-          if (std::find(seen, seen + distinct, c) != seen + distinct) continue;
-          seen[distinct++] = c;
-          sweep(cell_start_[std::size_t(c)], cell_start_[std::size_t(c) + 1]);
-        }
-  };
+  const Bins bins{table, cell_start_, cell_particles_, binned_};
   // One pass: each thread gathers its particles' candidates, each particle's sorted; then the slices
   // are laid out with room for the pairs their intact bonds may release, and filled.
   const int threads = parallel ? omp_get_max_threads() : 1;
@@ -151,7 +173,7 @@ void NeighbourList::build(const HotParticles& p, const BondStore& bonds, double 
 #pragma omp for schedule(static)
     for (std::uint32_t a = 0; a < n; ++a) {
       const std::size_t begin = found.size();
-      visit(a, [&](std::uint32_t b) { found.push_back(b); });
+      gather_candidates(a, {x[a], y[a], z[a], p.radius[a]}, bins, bonds, skin, found);
       std::sort(found.begin() + std::ptrdiff_t(begin), found.end());
       found_thread_[a] = std::uint32_t(thread);
       found_at_[a] = std::uint32_t(begin);

@@ -33,6 +33,11 @@ struct NeighbourList {
   void add_pair(std::uint32_t a, std::uint32_t b);
   std::size_t bytes() const;
 
+  // A particle's position and radius (mm), as the build reads them in bucket order.
+  struct Binned {
+    double x, y, z, radius;
+  };
+
   std::vector<std::uint32_t> start, count, list;  // slices [start[a], start[a] + count[a]) of list
   std::vector<double> xb, yb, zb;                 // mm: positions at the last build
   double skin = 0.0;                              // mm
@@ -43,9 +48,6 @@ struct NeighbourList {
   void insert_sorted(std::uint32_t a, std::uint32_t b);
 
   std::vector<std::uint32_t> cell_start_, cell_particles_;
-  struct Binned {
-    double x, y, z, radius;  // mm
-  };
   std::vector<Binned> binned_;  // cell_particles_' positions and radii, in the same (bucket) order
   // Per thread, the candidates of its particles found in one pass; per particle, where they lie.
   std::vector<std::vector<std::uint32_t>> found_;
