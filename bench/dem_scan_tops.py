@@ -68,7 +68,8 @@ def main(argv):
         dense = out / f"dense-{point}"
         # The run's exact config, as run.json holds it, with rows every BASE steps.
         config = json.loads((attempt / "run.json").read_text(encoding="utf-8"))["config"]
-        rupture_package.run(config, out=dense, set=[f"output.interval={base}", "run.threads=2"], overwrite=True)
+        rupture_package.run(config, out=dense, set=[f"output.interval={base}", "run.threads=2", "monitor.enabled=false"],
+                            overwrite=True)
         curves = dense / "curves.csv"
         top_range = f"{0.7 * x_c},{1.3 * x_c}"
         shapes.append((entry, script("dem_top_shape.py", "--top-range", top_range, "--width", 400 // base,
@@ -86,7 +87,7 @@ def main(argv):
     print("\n| point | reference x_c [%] | collapse onset / reference | form " + errors[0][2][1])
     print("|---|---|---|---" + errors[0][2][2])
     for entry, form, lines, onset in errors:
-        reference = lines[0].rsplit(" ", 1)[1]
+        reference = lines[0].split("reference x_c ")[1].split()[0]
         gap = f"{onset / float(reference):.3f}" if onset else "none"
         for row in lines[3:]:
             print(f"| {entry['index']} | {reference} | {gap} | {form} " + row)

@@ -10,7 +10,7 @@ Each run's reference x_c is the strain where the running mean of its top force o
 rows peaks (default 20 and 40; within LOW-HIGH % strain, default 0.3-0.5 %, the default study's; the mean
 of the two), so no filter and no peak fit enter it. Printed: each
 run's reference, then per row spacing and kind the accepted analyses' x_c error against it (mean and rms,
-in the strain's unit) and the share whose error lies within their reported sd. Standard library only.
+in % strain, as rupture run writes it) and the share whose error lies within their reported sd. Standard library only.
 """
 import csv
 import math
@@ -41,7 +41,7 @@ def main(argv):
     table = args[0]
     references = {os.path.realpath(path): reference_x_c(path, widths, low, high) for path in args[1:]}
     for path, x_c in references.items():
-        print(f"{path}: reference x_c {x_c:.4f}")
+        print(f"{path}: reference x_c {x_c:.4f} %")
     groups = {}
     with open(table, newline="", encoding="utf-8") as f:
         for row in csv.DictReader(f):
@@ -51,7 +51,7 @@ def main(argv):
                 groups.setdefault((int(row["spacing"]), row["kind"]), []).append((error, float(row["x_c_sd"])))
     if not groups:
         sys.exit(f"{table}: no accepted analysis of the named curves; name the dense files as the table does")
-    print("| rows every | kind | accepted | x_c error mean | rms | within its sd |")
+    print("| rows every (steps) | kind | accepted | x_c error mean [%] | rms [%] | within its sd |")
     print("|---|---|---|---|---|---|")
     for (spacing, kind), values in sorted(groups.items()):
         errors = [e for e, _ in values]
