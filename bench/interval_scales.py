@@ -5,7 +5,7 @@
 Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p] [--use KIND=S68,S95 ...]
                           [--skip-shape NAME ...] [--kind-column COLUMN] [--quiet-below SHARE]
                           [--white-by-level] [--white-from SHARE] [--level-from-both]
-                          [--check CHECK.csv ...]
+                          [--collapse-closeness EDGE] [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -35,6 +35,11 @@ without a measured share (no E_max) gets factor 1 either way.
 `--level-from-both` takes as each curve's level the larger of its white noise in F and in E_e
 (`force_white_share`, `energy_white_share`), as src/analysis/analysis.hpp's delay_noise_level does for
 δ_x (either curve's noise can set its spread).
+`--collapse-closeness 0.1` learns and scores only the curves cut by a sharp collapse (a
+`collapse_onset`), each kind split by how close the collapse comes to the force peak, the estimated
+onset over x_c minus 1: "near" below EDGE, "far" from it on (src/analysis/analysis.hpp's
+collapse_delta_scales and the strain ones; docs/analysis.md, "Intervals of a curve cut by a collapse,
+by how close it comes").
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -54,6 +59,7 @@ QUIET_BELOW = None  # set by --quiet-below
 WHITE_BY_LEVEL = False  # set by --white-by-level
 WHITE_FROM = None  # set by --white-from
 LEVEL_FROM_BOTH = False  # set by --level-from-both
+COLLAPSE_EDGE = None  # set by --collapse-closeness
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -90,23 +96,43 @@ def read(paths, skipped=()):
                 if KIND_COLUMN not in (table.fieldnames or []):
                     sys.exit(f"{path}: no column {KIND_COLUMN}; --kind-column names a column the file has "
                              "(noise_read is written from held-out 24 on)")
-                rows += [dict(r, source=path, noise=kind_of(r)) for r in table if r.get("shape") not in skipped]
+                kept = [r for r in table if r.get("shape") not in skipped]
+                if COLLAPSE_EDGE is not None:
+                    if "collapse_onset" not in (table.fieldnames or []):
+                        sys.exit(f"{path}: no column collapse_onset; --collapse-closeness needs files from "
+                                 "held-out-27-brittle on")
+                    kept = [r for r in kept if collapse_closeness(r) is not None]
+                rows += [dict(r, source=path, noise=kind_of(r)) for r in kept]
         except OSError as e:
             sys.exit(f"{path}: cannot read it ({e.strerror}); name an existing per-curve file")
     return rows
 
 
+def collapse_closeness(row):
+    """How close a curve's collapse comes to its force peak: the estimated onset over x_c minus 1, or
+    None without an onset or an x_c (a rejected curve may have neither)."""
+    try:
+        onset, x_c = float(row["collapse_onset"]), float(row["x_c"])
+    except ValueError:
+        return None
+    return onset / x_c - 1.0 if math.isfinite(onset) and x_c > 0.0 else None
+
+
 def kind_of(row):
     """The kind a curve is scored as: its KIND_COLUMN, or a random walk where --quiet-below finds it
-    quiet (a missing share, as for a curve without E_max, is not quiet)."""
+    quiet (a missing share, as for a curve without E_max, is not quiet); with --collapse-closeness,
+    followed by how close its collapse comes ("white, collapse near")."""
+    kind = row[KIND_COLUMN]
     if QUIET_BELOW is not None and row.get("accepted") == "1":
         try:
             shares = [float(row["force_white_share"]), float(row["energy_white_share"])]
         except (KeyError, ValueError):
             shares = None
         if shares is not None and max(shares) < QUIET_BELOW:
-            return "random walk"
-    return row[KIND_COLUMN]
+            kind = "random walk"
+    if COLLAPSE_EDGE is not None:
+        kind += ", collapse " + ("near" if collapse_closeness(row) < COLLAPSE_EDGE else "far")
+    return kind
 
 
 def parse_use(text):
@@ -222,7 +248,7 @@ def table(title, rows, scales):
                          "or give it with --use")
         covered = {lvl: sum(is_covered(r, lvl, scales[r["noise"]]) for r in accepted) for lvl, _ in LEVELS}
         raw = {lvl: sum(score(r, lvl) <= 1.0 for r in accepted) for lvl, _ in LEVELS}
-        walks = sum(r["noise"] == "random walk" for r in members)
+        walks = sum(r["noise"].startswith("random walk") for r in members)
         print(f"| {name} | {len(members)} | {walks} | {len(accepted)} | {100 * covered['68'] / n:.1f} % | "
               f"{100 * covered['95'] / n:.1f} % | {100 * raw['68'] / n:.1f} % | {100 * raw['95'] / n:.1f} % |")
 
@@ -266,7 +292,7 @@ def share_argument(args, option, of_what, example):
 
 
 def main(argv):
-    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM, LEVEL_FROM_BOTH
+    global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM, LEVEL_FROM_BOTH, COLLAPSE_EDGE
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -291,6 +317,8 @@ def main(argv):
             LEVEL_FROM_BOTH = True
         elif arg == "--white-from":
             WHITE_FROM = share_argument(args, arg, "of E_max", "0.0017")
+        elif arg == "--collapse-closeness":
+            COLLAPSE_EDGE = share_argument(args, arg, "of x_c between near and far collapses", "0.1")
         elif arg == "--use":
             kind, share, by_level = parse_use(next(args, ""))
             if share is None:

@@ -933,9 +933,10 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (was_calibrated) r.warnings.push_back(std::move(why));
 }
 
-// The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose intervals
-// are the bootstrap's own, estimate_delay), a noise model that read a ringing curve, and a filter the
-// smoothing floor strengthened (its factors were learned without it).
+// The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose factors
+// follow its closeness and, but for x_p's far walk cell, failed their check: collapse_delta_scales), a
+// noise model that read a ringing curve, and a filter the smoothing floor strengthened (its factors were
+// learned without it).
 void mark_unchecked_cases(AnalysisResult& r) {
   if (r.smoothing_floor_applied)
     mark_intervals_uncalibrated(
@@ -944,14 +945,20 @@ void mark_unchecked_cases(AnalysisResult& r) {
         "intervals of x_c, x_p and delta_x are not calibrated (under it, held-out 31's white 3 % curves "
         "were covered 181 of 197 at 95 %, 182 needed; docs/analysis.md, \"The smoothing floor\")");
   if (r.collapse_onset) {
+    const auto closeness = collapse_closeness(r);
     r.warnings.push_back(fmt::format(
-        "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}), filtered apart from "
-        "the loading; the intervals of x_c, x_p and delta_x are the bootstrap's own, not calibrated on such "
-        "curves (on curves with known answers, held-out 30, the 68 % interval of delta_x covered 61 % of the "
-        "brittle ones that came apart within 1.1 x_c and 79-83 % beyond, and 47-56 % of those that ring and "
-        "come apart as a run does, 71 % at single samples every 400 steps; docs/analysis.md, \"x_c of a "
-        "loading cut by a collapse\")",
-        *r.collapse_onset, r.strain_unit));
+        "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}{}), filtered apart from "
+        "the loading; the intervals of x_c, x_p and delta_x take the factors of such curves by how close the "
+        "collapse comes (near: within {:g} % of x_c), which a check did not calibrate: on curves with known "
+        "answers (held-out 32) delta_x's 68 % interval covered 64-72 % of them by noise kind and closeness "
+        "(82 % under white noise with a far collapse, which keeps the bootstrap's own), but 42 % of finite "
+        "bundles cut within 2 % past their peak and 55 % of run-like means far from it "
+        "(docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it comes\")",
+        *r.collapse_onset, r.strain_unit,
+        closeness ? fmt::format(", {:.3g} % of x_c past x_c: {}", 100.0 * *closeness,
+                                *closeness < collapse_near_closeness ? "near" : "far")
+                  : std::string(),
+        100.0 * collapse_near_closeness));
   }
   if (ringing_read(r)) {
     const auto& f = r.noise_model.force;
@@ -973,12 +980,18 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   const auto& boot = run.boot;
   DelayPosterior delay;
   const bool walk_profile = options.uncertainty.walk_profile;
-  // A record cut by a sharp collapse keeps the bootstrap's own intervals: the factors were learned
-  // where the noise model is read as on curves without one, and with the noise read on the loading
-  // the own intervals are the nearer to nominal on curves that come apart (docs/analysis.md, "The
-  // bootstrap's noise read on the loading").
-  const bool factors = options.calibrated_intervals && !r.collapse_onset;
-  r.x_c_interval = strain_interval(*r.x_c, factors ? critical_scales(r, walk_profile) : uncalibrated_scales);
+  // A record cut by a sharp collapse takes the factors of such curves, which follow how close the
+  // collapse comes to the force peak (collapse_scales); they were learned under the default peak form
+  // and walk steps, so under others such a record keeps the bootstrap's own.
+  const bool cut_as_learned = walk_profile && options.force_peak_form == PeakForm::smooth;
+  const auto factors = [&](IntervalScales uncut, const CollapseIntervalScales& cut,
+                           std::optional<double> level) {
+    if (!options.calibrated_intervals) return uncalibrated_scales;
+    if (!r.collapse_onset) return uncut;
+    return cut_as_learned ? collapse_scales(cut, r, level) : uncalibrated_scales;
+  };
+  r.x_c_interval = strain_interval(
+      *r.x_c, factors(critical_scales(r, walk_profile), collapse_critical_scales, critical_noise_level(r)));
   if (force_walk_hidden(r) && r.x_c_interval->scales.calibrated) {
     r.x_c_interval->scales.calibrated = false;
     r.warnings.emplace_back(
@@ -987,9 +1000,10 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
         "leaves F's walk out and is not calibrated (it covered 24-50 % at 68 % on such curves with known "
         "answers; docs/analysis.md, \"Known limits\")");
   }
-  r.x_p_interval = strain_interval(*r.x_p, factors ? precursor_scales(r, walk_profile) : uncalibrated_scales);
+  r.x_p_interval = strain_interval(*r.x_p, factors(precursor_scales(r, walk_profile),
+                                                   collapse_precursor_scales, precursor_noise_level(r)));
   if (options.delay_method == DelayMethod::fitted_maxima) {
-    r.interval_scales = factors ? delay_scales(r, walk_profile) : uncalibrated_scales;
+    r.interval_scales = factors(delay_scales(r, walk_profile), collapse_delta_scales, delay_noise_level(r));
     delay = delay_from_replicates(
         direct, replicate_values(boot.replicates, [](const PeakValues& v) { return v.x_c - v.x_p; }),
         r.interval_scales);

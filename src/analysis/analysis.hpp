@@ -196,6 +196,45 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
                                                              .random_walk = uncalibrated_scales,
                                                              .random_walk_profile = {0.9752, 1.0953, true}};
 
+// Intervals of a curve cut by a sharp collapse (AnalysisResult::collapse_onset): the bootstrap's sd is
+// too small where the collapse comes close to the force peak (x_c's cubic reaches into the collapse
+// and comes early; the noise model reads less than the collapse moves) and too large on white noise
+// where it leaves room, so their factors follow the collapse's closeness, the onset over x_c minus 1
+// (collapse_closeness): near below collapse_near_closeness, far from it on, per noise kind
+// (scored_as_random_walk). Split-conformal on the tuning set's brittle, brittle-close, dem-like and
+// run-like groups (3,344 curves with a collapse; bench/interval_scales.py --collapse-closeness 0.1),
+// rounded up to four digits, learned under the default peak form and the walk's step profile (under
+// others the bootstrap's own), white ones not calibrated below white_factors_checked_from.
+// Checked on held-out 32 (3,301 such curves; docs/analysis.md, "Intervals of a curve cut by a collapse,
+// by how close it comes") with the rule fixed before it: a cell is calibrated where its coverage lies
+// within 63-73 % and 93-97 % with no group more than 2 binomial sd below nominal; a cell that fails
+// keeps its factors, not calibrated, where they bring its coverage nearer nominal at both levels than
+// the bootstrap's own, else factor 1. Only x_p's far walk cell passed (63.4 %, 94.5 %). The others'
+// pooled coverage came near nominal (δ_x's near walk 48.0 / 76.9 -> 71.6 / 94.4 %) while groups stayed
+// apart: a collapse within 2 % of a bundle's peak (brittle-close) 42 % at 68 %, run-like means every
+// 100-200 steps far from it 55-56 %. δ_x's far white cell and x_p's near white one were nearer nominal
+// with the bootstrap's own (82.3 / 95.7 and 79.3 / 95.0 %) and keep it.
+struct CollapseIntervalScales {
+  IntervalScales white_near, white_far, walk_near, walk_far;
+  constexpr const IntervalScales& for_curve(bool random_walk, bool near) const {
+    if (random_walk) return near ? walk_near : walk_far;
+    return near ? white_near : white_far;
+  }
+};
+inline constexpr double collapse_near_closeness = 0.1;
+inline constexpr CollapseIntervalScales collapse_delta_scales{.white_near = {1.2973, 1.9834, false},
+                                                              .white_far = uncalibrated_scales,
+                                                              .walk_near = {1.8021, 2.2615, false},
+                                                              .walk_far = {1.1050, 1.2201, false}};
+inline constexpr CollapseIntervalScales collapse_critical_scales{.white_near = {1.6517, 1.3002, false},
+                                                                 .white_far = {0.7979, 0.8694, false},
+                                                                 .walk_near = {1.2791, 1.4174, false},
+                                                                 .walk_far = {1.3817, 1.9605, false}};
+inline constexpr CollapseIntervalScales collapse_precursor_scales{.white_near = uncalibrated_scales,
+                                                                  .white_far = {0.7553, 0.9268, false},
+                                                                  .walk_near = {1.2826, 1.6556, false},
+                                                                  .walk_far = {0.9760, 1.2283, true}};
+
 // White-noise factors that follow the curve's measured white noise in E_e, ν (the noise model's
 // white term in the bootstrap window over E_max): each level's factor interpolated linearly in log ν
 // between anchors and held at the end anchors beyond them, calibrated for ν within [calibrated_from,
@@ -369,6 +408,14 @@ IntervalScales precursor_scales(const AnalysisResult& result, bool walk_profile)
 // white_factors_checked_from.
 IntervalScales delay_scales(const AnalysisResult& result, bool walk_profile);
 IntervalScales critical_scales(const AnalysisResult& result, bool walk_profile);
+// How close a collapse comes to the force peak: collapse_onset over x_c minus 1; none without an onset
+// or a positive x_c.
+std::optional<double> collapse_closeness(const AnalysisResult& result);
+// The factors of a curve cut by a collapse from one of the collapse tables, by its kind and closeness
+// (1, not calibrated, without a closeness); white ones not calibrated below white_factors_checked_from at
+// `level` (the quantity's noise level, as for curves without a collapse).
+IntervalScales collapse_scales(const CollapseIntervalScales& table, const AnalysisResult& result,
+                               std::optional<double> level);
 // The unit of ℰ = dE_e/dx: E_e's unit per strain unit.
 std::string energy_rate_unit(const AnalysisResult& result);
 // A noise kind in words, as analysis.json, the terminal and the calibration files write it.

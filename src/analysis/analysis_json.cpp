@@ -231,6 +231,9 @@ nlohmann::json to_json(const AnalysisResult& r) {
   j["loading_phase_end"] = io::quantity(r.loading_phase_end, r.strain_unit);
   j["collapse_onset"] =
       r.collapse_onset ? io::quantity(*r.collapse_onset, r.strain_unit) : nlohmann::json(nullptr);
+  // How close the collapse comes to the force peak, which chose the intervals' factors there.
+  const auto closeness = collapse_closeness(r);
+  j["collapse_closeness"] = closeness ? io::quantity(*closeness, "1") : nlohmann::json(nullptr);
   j["uncertainty"] = uncertainty_json(r);
   j["Gamma"] = optional_json(r.Gamma);
   j["A_r"] = optional_json(r.A_r);

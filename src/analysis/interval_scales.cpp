@@ -63,21 +63,35 @@ IntervalScales precursor_scales(const AnalysisResult& r, bool walk_profile) {
 }
 
 namespace {
-// A kind's factors, the white ones not calibrated below white_factors_checked_from.
-IntervalScales checked_from_level(const NoiseIntervalScales& kinds, const AnalysisResult& r,
-                                  bool walk_profile, std::optional<double> level) {
-  IntervalScales scales = kinds.for_noise(scored_as_random_walk(r), walk_profile);
+// White factors are not calibrated below white_factors_checked_from, at the level that sets the
+// quantity's spread (none on a walk).
+IntervalScales checked_at_level(IntervalScales scales, std::optional<double> level) {
   if (level && !(*level >= white_factors_checked_from)) scales.calibrated = false;
   return scales;
 }
 }  // namespace
 
 IntervalScales delay_scales(const AnalysisResult& r, bool walk_profile) {
-  return checked_from_level(delta_interval_scales, r, walk_profile, delay_noise_level(r));
+  return checked_at_level(delta_interval_scales.for_noise(scored_as_random_walk(r), walk_profile),
+                          delay_noise_level(r));
 }
 
 IntervalScales critical_scales(const AnalysisResult& r, bool walk_profile) {
-  return checked_from_level(critical_strain_scales, r, walk_profile, critical_noise_level(r));
+  return checked_at_level(critical_strain_scales.for_noise(scored_as_random_walk(r), walk_profile),
+                          critical_noise_level(r));
+}
+
+std::optional<double> collapse_closeness(const AnalysisResult& r) {
+  if (!r.collapse_onset || !r.x_c || !(r.x_c->value > 0.0)) return std::nullopt;
+  return *r.collapse_onset / r.x_c->value - 1.0;
+}
+
+IntervalScales collapse_scales(const CollapseIntervalScales& table, const AnalysisResult& r,
+                               std::optional<double> level) {
+  const auto closeness = collapse_closeness(r);
+  if (!closeness) return uncalibrated_scales;
+  return checked_at_level(table.for_curve(scored_as_random_walk(r), *closeness < collapse_near_closeness),
+                          level);
 }
 
 std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }

@@ -233,12 +233,12 @@ bool interval_calibrated(const json& delta) {
 std::string uncalibrated_because(const json& analysis) {
   const auto& delta = analysis["delta_x"];
   if (interval_calibrated(delta)) return "";
-  // A collapse first: on such a curve no factors are calibrated at any noise level.
+  // A collapse first: on such a curve δ_x's factors are calibrated at no noise level.
   if (const auto onset = analysis.find("collapse_onset"); onset != analysis.end() && onset->is_object()) {
     return fmt::format(
         "; its intervals are not calibrated: the curve ends in a collapse too sharp for the filter (from "
-        "{} {}), filtered apart from the loading, and no interval factors are calibrated on such curves, "
-        "so its intervals are the bootstrap's own (docs/analysis.md)",
+        "{} {}), filtered apart from the loading, and the factors of such curves, which follow how close "
+        "the collapse comes to the force peak, did not pass their held-out check (docs/analysis.md)",
         number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")));
   }
   const auto& scales = delta.value("interval_scales", json::object());

@@ -1047,7 +1047,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-29").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-30").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-31").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-32").empty());
+  EXPECT_EQ(calibration_set("held-out-32").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-33").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
@@ -1178,14 +1179,8 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     ASSERT_TRUE(r.collapse_onset) << seed;
     EXPECT_NEAR(*r.collapse_onset, cut, 3 * step) << seed;
     EXPECT_EQ(to_json(r)["collapse_onset"]["unit"], "1");
-    // No factor is calibrated on curves with a collapse: the intervals are the bootstrap's own, they say
-    // so, and a warning says why.
-    EXPECT_FALSE(r.interval_scales.calibrated) << seed;
-    EXPECT_FALSE(r.x_c_interval->scales.calibrated) << seed;
-    EXPECT_FALSE(r.x_p_interval->scales.calibrated) << seed;
-    EXPECT_EQ(r.interval_scales.level68, 1.0) << seed;
-    EXPECT_EQ(r.x_c_interval->scales.level95, 1.0) << seed;
-    EXPECT_EQ(r.x_p_interval->scales.level68, 1.0) << seed;
+    // The intervals take the factors of curves cut by a collapse (ACurveCutByACollapseTakesTheFactorsOf
+    // HowCloseItComes), and a warning says the record was cut.
     EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
       return w.find("collapse too sharp for the filter") != std::string::npos;
     })) << seed;
@@ -1197,6 +1192,53 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     EXPECT_NEAR(r.delta_x->value, x_c - x_p, 0.2 * (x_c - x_p)) << seed;
     EXPECT_LT(r.delay->ci95_low, x_c - x_p) << seed;
     EXPECT_GT(r.delay->ci95_high, x_c - x_p) << seed;
+  }
+}
+
+// A curve cut by a collapse takes the collapse tables' factors (collapse_delta_scales and the strain
+// ones) by its noise kind and by how close the collapse comes to the force peak: near at 1.05 x_c, far
+// at 1.2 x_c; each interval is the bootstrap's own stretched by them. Under the corner form, which the
+// factors were not learned with, the intervals stay the bootstrap's own, not calibrated.
+TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
+  const double x_c = std::cbrt(1.0 / 3.0);
+  AnalysisOptions own;
+  own.calibrated_intervals = false;
+  for (const double cut : {1.05, 1.2}) {
+    const Curve curve = brittle_curve(cut * x_c, 500, 3);
+    const auto r = analyze_curve(curve, {});
+    const auto bootstrap = analyze_curve(curve, own);
+    ASSERT_TRUE(r.accepted && bootstrap.accepted) << cut << ": " << r.rejection << bootstrap.rejection;
+    ASSERT_TRUE(collapse_closeness(r)) << cut;
+    EXPECT_NEAR(*collapse_closeness(r), cut - 1.0, 0.03) << cut;
+    const bool near = cut < 1.1, walk = scored_as_random_walk(r);
+    EXPECT_EQ(*collapse_closeness(r) < collapse_near_closeness, near) << cut;
+    EXPECT_EQ(to_json(r)["collapse_closeness"]["value"].get<double>(), *collapse_closeness(r)) << cut;
+    const auto& delta = collapse_delta_scales.for_curve(walk, near);
+    const auto& critical = collapse_critical_scales.for_curve(walk, near);
+    const auto& precursor = collapse_precursor_scales.for_curve(walk, near);
+    EXPECT_EQ(r.interval_scales.level68, delta.level68) << cut;
+    EXPECT_EQ(r.interval_scales.level95, delta.level95) << cut;
+    EXPECT_EQ(r.x_c_interval->scales.level68, critical.level68) << cut;
+    EXPECT_EQ(r.x_p_interval->scales.level95, precursor.level95) << cut;
+    // The same bootstrap, stretched: x_c's and x_p's half-widths are the factor times the own sd, δ_x's
+    // the factor times the own half-width on each side.
+    EXPECT_DOUBLE_EQ(r.x_c->error, bootstrap.x_c->error) << cut;
+    EXPECT_NEAR(r.x_c_interval->ci68_high - r.x_c->value, critical.level68 * bootstrap.x_c->error, 1e-12)
+        << cut;
+    EXPECT_NEAR(r.x_p_interval->ci95_high - r.x_p->value,
+                std::max(1.96 * precursor.level95, precursor.level68) * bootstrap.x_p->error, 1e-12)
+        << cut;
+    EXPECT_DOUBLE_EQ(r.delay->mean, bootstrap.delay->mean) << cut;
+    EXPECT_NEAR(r.delay->ci68_high - r.delay->mean,
+                delta.level68 * (bootstrap.delay->ci68_high - bootstrap.delay->mean), 1e-12)
+        << cut;
+    auto corner = AnalysisOptions{};
+    corner.force_peak_form = PeakForm::corner;
+    const auto at_corner = analyze_curve(curve, corner);
+    ASSERT_TRUE(at_corner.accepted) << cut << ": " << at_corner.rejection;
+    EXPECT_EQ(at_corner.interval_scales.level68, 1.0) << cut;
+    EXPECT_FALSE(at_corner.interval_scales.calibrated) << cut;
+    EXPECT_FALSE(at_corner.x_c_interval->scales.calibrated) << cut;
   }
 }
 

@@ -162,3 +162,24 @@ def test_a_share_option_without_a_number_is_refused_with_an_example(tmp_path):
     for option, example in (("--white-from", "--white-from 0.0017"), ("--quiet-below", "--quiet-below 5e-4")):
         result = run(learn, option, "low")
         assert result.returncode != 0 and f"e.g. {example}" in result.stderr, result.stderr
+
+
+def test_collapse_closeness_keeps_curves_cut_by_a_collapse_and_splits_each_kind_near_and_far(tmp_path):
+    """--collapse-closeness 0.1 drops curves without a collapse onset (or x_c) and scores the others
+    as "KIND, collapse near" below onset / x_c - 1 = 0.1, "KIND, collapse far" from it on."""
+    rows = rows_with_scores([0.5, 0.6, 0.7, 0.8], [0.5, 0.6, 0.7, 0.8], noise="white")
+    for row, (onset, x_c) in zip(rows, [("1.05", "1.0"), ("1.2", "1.0"), ("", "1.0"), ("1.3", "")]):
+        row.update(collapse_onset=onset, x_c=x_c)
+    path = tmp_path / "cut.csv"
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        table = csv.DictWriter(f, fieldnames=COLUMNS + ["collapse_onset", "x_c"])
+        table.writeheader()
+        table.writerows(rows)
+    module = load()
+    module.COLLAPSE_EDGE = 0.1
+    read = module.read([str(path)])
+    assert [r["noise"] for r in read] == ["white, collapse near", "white, collapse far"]
+    assert set(module.learn_scales(read)) == {"white, collapse near", "white, collapse far"}
+    assert "white, collapse far noise (1 accepted curves)" in run(str(path), "--collapse-closeness", "0.1").stdout
+    refused = run(write(tmp_path / "uncut.csv", rows_with_scores([0.5], [0.5])), "--collapse-closeness", "0.1")
+    assert refused.returncode != 0 and "no column collapse_onset" in refused.stderr

@@ -254,7 +254,7 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   EXPECT_THAT(check_well_formed(slurp(run / "report.html")).body_text,
               HasSubstr("its intervals are not calibrated: the curve's white noise, 0.09 % of its peak, lies "
                         "below the 0.17 % from which the white factors were checked"));
-  // A collapse is the reason even where the level is low too: no factors apply there at any level.
+  // A collapse is the reason even where the level is low too: its factors are calibrated at no level.
   analysis["collapse_onset"] = {{"unit", "%"}, {"value", 0.4194}};
   io::write_json_atomically(run / "analysis.json", analysis);
   ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
@@ -262,7 +262,7 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   EXPECT_THAT(cut,
               HasSubstr("its intervals are not calibrated: the curve ends in a collapse too sharp for the "
                         "filter (from 0.4194 %)"));
-  EXPECT_THAT(cut, HasSubstr("so its intervals are the bootstrap's own"));
+  EXPECT_THAT(cut, HasSubstr("did not pass their held-out check"));
   EXPECT_THAT(cut, Not(HasSubstr("white factors were checked")));
   scales.erase("white_share");
   analysis["collapse_onset"] = nullptr;
