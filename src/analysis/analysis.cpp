@@ -9,6 +9,7 @@
 
 #include "analysis/bootstrap.hpp"
 #include "analysis/collapse.hpp"
+#include "analysis/option_words.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
 #include "io/quantity.hpp"
@@ -1147,10 +1148,8 @@ std::string energy_rate_unit(const AnalysisResult& result) {
   return io::unit_ratio(result.energy_unit, result.strain_unit);
 }
 
-const char* to_string(PeakForm form) { return form == PeakForm::corner ? "corner" : "smooth"; }
+const char* to_string(PeakForm form) { return word_of(peak_form_words, form).data(); }
 
-const char* to_string(DelayMethod method) {
-  return method == DelayMethod::fitted_maxima ? "fitted-maxima" : "shift-l1";
-}
+const char* to_string(DelayMethod method) { return word_of(delay_method_words, method).data(); }
 
 }  // namespace rupture::analysis

@@ -14,6 +14,7 @@
 
 #include "analysis/analysis.hpp"
 #include "analysis/curve_file.hpp"
+#include "analysis/option_words.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -200,24 +201,24 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--delay-method", o->delay_method,
                   "delta_x from the fitted maxima (fitted-maxima, default) or by the paper's l1 shift of the "
                   "energy rate onto F (shift-l1)")
-      ->check(CLI::IsMember({"fitted-maxima", "shift-l1"}));
+      ->check(CLI::IsMember(analysis::word_list(analysis::delay_method_words)));
   cmd->add_option(
          "--force-peak-form", o->force_peak_form,
          "How the force peaks before a collapse: smooth (a cubic over the filtered top, default) or corner "
          "(it turns at its peak and sags to the collapse, as a DEM tissue does: x_c is the corner of two "
          "lines on the unfiltered rows near the collapse)")
-      ->check(CLI::IsMember({"smooth", "corner"}));
+      ->check(CLI::IsMember(analysis::word_list(analysis::peak_form_words)));
   cmd->add_option(
          "--smoothing-floor", o->analysis.smoothing_floor_share,
          "Where the noise of F or E_e reads as white, the automatic filter averages over at least this "
          "share of the rows up to the force peak, where they are 100 or more (default 0: the noise alone "
          "chooses; 0.25 mends DEM runs at rows every 100-200 steps, see docs/analysis.md)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(CLI::Range(0.0, analysis::max_smoothing_floor_share));
   cmd->add_option("--max-samples", o->analysis.max_samples,
                   "Denser curves are averaged in blocks down to this many samples (0: never)");
   cmd->add_option("--replicates", o->analysis.uncertainty.replicates,
                   "Noise replicates of the bootstrap that gives every uncertainty")
-      ->check(CLI::Range(20, 100000));
+      ->check(CLI::Range(analysis::min_replicates, analysis::max_replicates));
   cmd->add_option("--seed", o->analysis.uncertainty.seed, "Seed of the bootstrap's noise replicates");
   cmd->add_flag("--walk-profile,!--no-walk-profile", o->analysis.uncertainty.walk_profile,
                 "Random-walk noise: bootstrap steps that follow the curve's breaks (default; calibrated) "
@@ -229,10 +230,9 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(101, 100001));
   cmd->callback([o, &exit_code] {
     auto& a = o->analysis;
-    a.delay_method = o->delay_method == "shift-l1" ? analysis::DelayMethod::shift_l1
-                                                   : analysis::DelayMethod::fitted_maxima;
-    a.force_peak_form =
-        o->force_peak_form == "corner" ? analysis::PeakForm::corner : analysis::PeakForm::smooth;
+    // The words were checked against the same tables (IsMember above).
+    a.delay_method = *analysis::from_word(analysis::delay_method_words, o->delay_method);
+    a.force_peak_form = *analysis::from_word(analysis::peak_form_words, o->force_peak_form);
     a.filter.kind = o->filter == "savgol" ? analysis::FilterKind::savitzky_golay
                     : o->filter == "none" ? analysis::FilterKind::none
                                           : analysis::FilterKind::butterworth;

@@ -16,8 +16,9 @@ struct AnalyzeOptions {
   bool no_breaks = false;
   analysis::ColumnChoice columns;
   std::string filter = "butterworth";
-  std::string delay_method = "fitted-maxima";
-  std::string force_peak_form = "smooth";
+  // Words of analysis/option_words.hpp, the analysis's defaults until the command line names others.
+  std::string delay_method = analysis::to_string(analysis::AnalysisOptions{}.delay_method);
+  std::string force_peak_form = analysis::to_string(analysis::AnalysisOptions{}.force_peak_form);
   analysis::AnalysisOptions analysis;
 };
 

@@ -21,6 +21,7 @@
 
 #include "analysis/analysis.hpp"
 #include "analysis/curve_file.hpp"
+#include "analysis/option_words.hpp"
 #include "core/error.hpp"
 #include "fbm/bundle.hpp"
 #include "fbm/distribution.hpp"
@@ -335,16 +336,18 @@ analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
     const auto name = key.cast<std::string>();
     if (name == "delay_method") {
       const auto method = value.cast<std::string>();
-      if (method != "fitted-maxima" && method != "shift-l1")
+      const auto chosen = analysis::from_word(analysis::delay_method_words, method);
+      if (!chosen)
         throw InputError("delay_method", "'" + method + "' is not a method",
-                         "use \"fitted-maxima\" or \"shift-l1\"");
-      options.delay_method =
-          method == "shift-l1" ? analysis::DelayMethod::shift_l1 : analysis::DelayMethod::fitted_maxima;
+                         "use " + analysis::quoted_words(analysis::delay_method_words));
+      options.delay_method = *chosen;
     } else if (name == "replicates") {
       const auto replicates = value.cast<long long>();
-      if (replicates != 0 && (replicates < 20 || replicates > 100'000))  // as rupture analyze --replicates
-        throw InputError("replicates", fmt::format("{} replicates", replicates),
-                         "give 0 (the default 200) or 20 to 100000");
+      if (replicates != 0 && (replicates < analysis::min_replicates || replicates > analysis::max_replicates))
+        throw InputError(
+            "replicates", fmt::format("{} replicates", replicates),
+            fmt::format("give 0 (the default {}) or {} to {}", analysis::BootstrapOptions{}.replicates,
+                        analysis::min_replicates, analysis::max_replicates));
       if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
     } else if (name == "seed") {
       const auto seed = value.cast<long long>();
@@ -354,16 +357,18 @@ analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
       options.uncertainty.walk_profile = value.cast<bool>();
     } else if (name == "force_peak_form") {
       const auto form = value.cast<std::string>();
-      if (form != "smooth" && form != "corner")
+      const auto chosen = analysis::from_word(analysis::peak_form_words, form);
+      if (!chosen)
         throw InputError("force_peak_form", "'" + form + "' is not a form of the force's peak",
-                         "use \"smooth\" or \"corner\"");
-      options.force_peak_form = form == "corner" ? analysis::PeakForm::corner : analysis::PeakForm::smooth;
+                         "use " + analysis::quoted_words(analysis::peak_form_words));
+      options.force_peak_form = *chosen;
     } else if (name == "smoothing_floor") {
       const auto share = value.cast<double>();
-      if (!(share >= 0.0 && share <= 1.0))
+      if (!(share >= 0.0 && share <= analysis::max_smoothing_floor_share))
         throw InputError("smoothing_floor",
                          fmt::format("{} is not a share of the rise to the force peak", share),
-                         "give a value in [0, 1] (0: the noise alone chooses the filter)");
+                         fmt::format("give a value in [0, {:g}] (0: the noise alone chooses the filter)",
+                                     analysis::max_smoothing_floor_share));
       options.smoothing_floor_share = share;
     } else {
       throw InputError(

@@ -13,6 +13,7 @@
 #include <string>
 #include <tuple>
 
+#include "analysis/option_words.hpp"
 #include "calibration_set.hpp"
 #include "core/error.hpp"
 #include "fbm/power_law.hpp"
@@ -1525,6 +1526,26 @@ TEST(BootstrapIntervalOf, ReplicatesThatAllAgreeGiveTheNormalIntervalOfTheirBias
   EXPECT_NEAR(s.ci68_high, 1.0, 1e-12);
   EXPECT_NEAR(s.ci95_low, 0.9 - 0.1 * 1.959963984540054, 1e-12);
   EXPECT_NEAR(s.ci95_high, 0.9 + 0.1 * 1.959963984540054, 1e-12);
+}
+
+// The option words both doors take (rupture analyze, rupture.analyze) name each value once and back:
+// what the command line checks, what the Python keywords map and what analysis.json writes agree.
+TEST(OptionWords, EveryValueHasOneWordThatNamesItBack) {
+  for (const auto& w : delay_method_words) {
+    EXPECT_EQ(from_word(delay_method_words, w.word), w.value) << w.word;
+    EXPECT_EQ(std::string_view(to_string(w.value)), w.word);
+  }
+  for (const auto& w : peak_form_words) {
+    EXPECT_EQ(from_word(peak_form_words, w.word), w.value) << w.word;
+    EXPECT_EQ(std::string_view(to_string(w.value)), w.word);
+  }
+  EXPECT_FALSE(from_word(peak_form_words, "sharp"));
+  EXPECT_FALSE(from_word(delay_method_words, "Fitted-Maxima"));  // words are exact, as on the command line
+  EXPECT_EQ(word_list(delay_method_words), (std::vector<std::string>{"fitted-maxima", "shift-l1"}));
+  EXPECT_EQ(quoted_words(peak_form_words), "\"smooth\" or \"corner\"");
+  constexpr std::array<OptionWord<int>, 3> three{{{"a", 1}, {"b", 2}, {"c", 3}}};
+  EXPECT_EQ(quoted_words(three), "\"a\", \"b\" or \"c\"");
+  EXPECT_EQ(word_of(three, 2), "b");
 }
 
 }  // namespace
