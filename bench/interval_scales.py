@@ -341,6 +341,9 @@ def main(argv):
             learn.append(arg)
     if not learn:
         sys.exit("interval_scales.py: name at least one per-curve file to learn from")
+    if COLLAPSE_EDGE is not None and WHITE_BY_LEVEL:
+        sys.exit("interval_scales.py: --white-by-level learns white groups of curves without a collapse; "
+                 "give it or --collapse-closeness, not both")
     learning = read(learn, skipped)
     present = {r.get("shape") for r in read(learn + check)}
     for name in sorted(skipped - present):

@@ -934,11 +934,11 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (was_calibrated) r.warnings.push_back(std::move(why));
 }
 
-// The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose factors
-// follow its closeness and, but for x_p's far walk cell, failed their check: collapse_delta_scales), a
-// noise model that read a ringing curve, and a filter the smoothing floor strengthened (its factors were
-// learned without it).
-void mark_unchecked_cases(AnalysisResult& r) {
+// The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose factors,
+// where `cut_factors` says they were applied, follow its closeness and, but for x_p's far walk cell,
+// failed their check: collapse_delta_scales), a noise model that read a ringing curve, and a filter the
+// smoothing floor strengthened (its factors were learned without it).
+void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
   if (r.smoothing_floor_applied)
     mark_intervals_uncalibrated(
         r,
@@ -947,19 +947,29 @@ void mark_unchecked_cases(AnalysisResult& r) {
         "were covered 181 of 197 at 95 %, 182 needed; docs/analysis.md, \"The smoothing floor\")");
   if (r.collapse_onset) {
     const auto closeness = collapse_closeness(r);
+    const std::string where = closeness
+                                  ? fmt::format(", {:.3g} % of x_c {} x_c: {}", 100.0 * std::abs(*closeness),
+                                                *closeness < 0.0 ? "before" : "after",
+                                                is_near_collapse(*closeness) ? "near" : "far")
+                                  : std::string();
+    const std::string intervals =
+        cut_factors
+            ? fmt::format(
+                  "the intervals of x_c, x_p and delta_x take the factors of such curves by how close the "
+                  "collapse comes (near: within {:g} % of x_c), calibrated only for x_p under a walk with a "
+                  "far collapse: on curves with known answers (held-out 32) delta_x's 68 % interval covered "
+                  "64-72 % of them by noise kind and closeness (82 % under white noise with a far collapse, "
+                  "which keeps the bootstrap's own), but 42 % of finite bundles cut within 2 % past their "
+                  "peak and 55 % of run-like means far from it",
+                  100.0 * collapse_near_closeness)
+            : "the intervals of x_c, x_p and delta_x are the bootstrap's own, not calibrated (the factors of "
+              "such curves were learned with the default peak form, calibrated intervals and, on a walk, the "
+              "walk's step profile)";
     r.warnings.push_back(fmt::format(
         "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}{}), filtered apart from "
-        "the loading; the intervals of x_c, x_p and delta_x take the factors of such curves by how close the "
-        "collapse comes (near: within {:g} % of x_c), which a check did not calibrate: on curves with known "
-        "answers (held-out 32) delta_x's 68 % interval covered 64-72 % of them by noise kind and closeness "
-        "(82 % under white noise with a far collapse, which keeps the bootstrap's own), but 42 % of finite "
-        "bundles cut within 2 % past their peak and 55 % of run-like means far from it "
-        "(docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it comes\")",
-        *r.collapse_onset, r.strain_unit,
-        closeness ? fmt::format(", {:.3g} % of x_c past x_c: {}", 100.0 * *closeness,
-                                *closeness < collapse_near_closeness ? "near" : "far")
-                  : std::string(),
-        100.0 * collapse_near_closeness));
+        "the loading; {} (docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it "
+        "comes\")",
+        *r.collapse_onset, r.strain_unit, where, intervals));
   }
   if (ringing_read(r)) {
     const auto& f = r.noise_model.force;
@@ -983,13 +993,15 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
   const bool walk_profile = options.uncertainty.walk_profile;
   // A record cut by a sharp collapse takes the factors of such curves, which follow how close the
   // collapse comes to the force peak (collapse_scales); they were learned under the default peak form
-  // and walk steps, so under others such a record keeps the bootstrap's own.
-  const bool cut_as_learned = walk_profile && options.force_peak_form == PeakForm::smooth;
+  // and, on a walk, the walk's step profile, so under others such a record keeps the bootstrap's own.
+  const bool cut_factors = options.calibrated_intervals && r.collapse_onset && collapse_closeness(r) &&
+                           options.force_peak_form == PeakForm::smooth &&
+                           (walk_profile || !scored_as_random_walk(r));
   const auto factors = [&](IntervalScales uncut, const CollapseIntervalScales& cut,
                            std::optional<double> level) {
     if (!options.calibrated_intervals) return uncalibrated_scales;
     if (!r.collapse_onset) return uncut;
-    return cut_as_learned ? collapse_scales(cut, r, level) : uncalibrated_scales;
+    return cut_factors ? collapse_scales(cut, r, level) : uncalibrated_scales;
   };
   r.x_c_interval = strain_interval(
       *r.x_c, factors(critical_scales(r, walk_profile), collapse_critical_scales, critical_noise_level(r)));
@@ -1024,7 +1036,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
              "peaks is too short)");
     }
   }
-  mark_unchecked_cases(r);
+  mark_unchecked_cases(r, cut_factors);
   r.delay = delay;
   r.delta_x = measured(delay.mean, delay.sd, r.strain_unit);
   if (delay.mean != 0.0 && r.energy_peak->found) {

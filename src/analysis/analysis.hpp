@@ -222,6 +222,7 @@ struct CollapseIntervalScales {
   }
 };
 inline constexpr double collapse_near_closeness = 0.1;
+constexpr bool is_near_collapse(double closeness) { return closeness < collapse_near_closeness; }
 inline constexpr CollapseIntervalScales collapse_delta_scales{.white_near = {1.2973, 1.9834, false},
                                                               .white_far = uncalibrated_scales,
                                                               .walk_near = {1.8021, 2.2615, false},

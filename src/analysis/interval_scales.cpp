@@ -69,16 +69,20 @@ IntervalScales checked_at_level(IntervalScales scales, std::optional<double> lev
   if (level && !(*level >= white_factors_checked_from)) scales.calibrated = false;
   return scales;
 }
+
+// A kind's factors for a curve without a collapse, checked at its level.
+IntervalScales kind_scales(const NoiseIntervalScales& kinds, const AnalysisResult& r, bool walk_profile,
+                           std::optional<double> level) {
+  return checked_at_level(kinds.for_noise(scored_as_random_walk(r), walk_profile), level);
+}
 }  // namespace
 
 IntervalScales delay_scales(const AnalysisResult& r, bool walk_profile) {
-  return checked_at_level(delta_interval_scales.for_noise(scored_as_random_walk(r), walk_profile),
-                          delay_noise_level(r));
+  return kind_scales(delta_interval_scales, r, walk_profile, delay_noise_level(r));
 }
 
 IntervalScales critical_scales(const AnalysisResult& r, bool walk_profile) {
-  return checked_at_level(critical_strain_scales.for_noise(scored_as_random_walk(r), walk_profile),
-                          critical_noise_level(r));
+  return kind_scales(critical_strain_scales, r, walk_profile, critical_noise_level(r));
 }
 
 std::optional<double> collapse_closeness(const AnalysisResult& r) {
@@ -90,8 +94,7 @@ IntervalScales collapse_scales(const CollapseIntervalScales& table, const Analys
                                std::optional<double> level) {
   const auto closeness = collapse_closeness(r);
   if (!closeness) return uncalibrated_scales;
-  return checked_at_level(table.for_curve(scored_as_random_walk(r), *closeness < collapse_near_closeness),
-                          level);
+  return checked_at_level(table.for_curve(scored_as_random_walk(r), is_near_collapse(*closeness)), level);
 }
 
 std::string_view noise_name(bool random_walk) { return random_walk ? "random walk" : "white"; }

@@ -40,7 +40,8 @@ class Analysis:
             for level in ("ci68", "ci95"):
                 setattr(self, f"{key}_{level}", tuple(m[level]) if level in m else None)
         # Whether each quantity's intervals are calibrated (their factors passed a held-out check) or
-        # the bootstrap's own, with no coverage promise; False where the file does not say.
+        # not (the bootstrap's own, or factors that failed their check), with no coverage promise;
+        # False where the file does not say.
         self.intervals_calibrated = {
             key: bool(((document.get(key) or {}).get("interval_scales") or {}).get("calibrated", False))
             for key in ("x_c", "x_p", "delta_x")}
