@@ -175,10 +175,14 @@ TEST(Figures, RunFolderWithAnalysisAndBreaks) {
   const auto breaks = png_size(out / "breaking_rate.png");
   EXPECT_EQ(breaks.width, 1000u);
   EXPECT_EQ(breaks.height, 700u);
-  // x_p, x_c, x_m from analysis.json, then the MAP of delta_x.
-  EXPECT_EQ(marker_strains(out / "loading.gp").size(), 4u);
-  // The energy rate drawn is the one analysis.json carries (no second analysis), over its E_rate,max.
+  // x_p, x_c, x_m from analysis.json, then the MAP of delta_x and the ends of its reported 95 % interval.
   const auto analysis = nlohmann::json::parse(slurp(run / "analysis.json"));
+  const auto markers = marker_strains(out / "loading.gp");
+  ASSERT_EQ(markers.size(), 6u);
+  const auto& ci95 = analysis.at("delta_x").at("ci95");
+  EXPECT_NEAR(markers[4], ci95.at(0).get<double>(), 1e-6 * std::abs(ci95.at(0).get<double>()));
+  EXPECT_NEAR(markers[5], ci95.at(1).get<double>(), 1e-6 * std::abs(ci95.at(1).get<double>()));
+  // The energy rate drawn is the one analysis.json carries (no second analysis), over its E_rate,max.
   const auto& stored = analysis.at("curves").at("energy_rate").at("value");
   const auto all = blocks(out / "loading.dat");
   ASSERT_GE(all.size(), 2u);
