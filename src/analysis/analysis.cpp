@@ -952,19 +952,23 @@ void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
                                                 *closeness < 0.0 ? "before" : "after",
                                                 is_near_collapse(*closeness) ? "near" : "far")
                                   : std::string();
+    // δ_x's factors apply to the fitted maxima only (the l1 shift's interval is its posterior).
+    const bool delta_scaled = r.delay_method == DelayMethod::fitted_maxima;
     const std::string intervals =
         cut_factors
             ? fmt::format(
-                  "the intervals of x_c, x_p and delta_x take the factors of such curves by how close the "
-                  "collapse comes (near: within {:g} % of x_c), calibrated only for x_p under a walk with a "
-                  "far collapse: on curves with known answers (held-out 32) delta_x's 68 % interval covered "
-                  "64-72 % of them by noise kind and closeness (82 % under white noise with a far collapse, "
-                  "which keeps the bootstrap's own), but 42 % of finite bundles cut within 2 % past their "
-                  "peak and 55 % of run-like means far from it",
-                  100.0 * collapse_near_closeness)
-            : "the intervals of x_c, x_p and delta_x are the bootstrap's own, not calibrated (the factors of "
-              "such curves were learned with the default peak form, calibrated intervals and, on a walk, the "
-              "walk's step profile)";
+                  "the intervals of x_c, x_p{} take the factors of such curves by how close the collapse "
+                  "comes (near: less than {:g} % of x_c after it), calibrated only for x_p under a walk with "
+                  "a far collapse: on curves with known answers (held-out 32) delta_x's 68 % interval "
+                  "covered 64-72 % of them by noise kind and closeness (82 % under white noise with a far "
+                  "collapse, which keeps the bootstrap's own), but 42 % of finite bundles cut within 2 % "
+                  "past their peak and 55 % of run-like means far from it",
+                  delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness)
+            : fmt::format(
+                  "the intervals of x_c, x_p{} are the bootstrap's own, not calibrated (the factors of "
+                  "such curves apply to a positive x_c under the default peak form with calibrated "
+                  "intervals and, on a walk, the walk's step profile)",
+                  delta_scaled ? " and delta_x" : "");
     r.warnings.push_back(fmt::format(
         "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}{}), filtered apart from "
         "the loading; {} (docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it "

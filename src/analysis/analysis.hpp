@@ -203,8 +203,8 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
 // (collapse_closeness): near below collapse_near_closeness, far from it on, per noise kind
 // (scored_as_random_walk). Split-conformal on the tuning set's brittle, brittle-close, dem-like and
 // run-like groups (3,344 curves with a collapse; bench/interval_scales.py --collapse-closeness 0.1),
-// rounded up to four digits, learned under the default peak form and the walk's step profile (under
-// others the bootstrap's own), white ones not calibrated below white_factors_checked_from.
+// rounded up to four digits, learned under the default peak form and, on a walk, the walk's step profile
+// (under others the bootstrap's own), white ones not calibrated below white_factors_checked_from.
 // Checked on held-out 32 (3,301 such curves; docs/analysis.md, "Intervals of a curve cut by a collapse,
 // by how close it comes") with the rule fixed before it: a cell is calibrated where its coverage lies
 // within 63-73 % and 93-97 % with no group more than 2 binomial sd below nominal; a cell that fails

@@ -237,8 +237,8 @@ std::string uncalibrated_because(const json& analysis) {
   if (const auto onset = analysis.find("collapse_onset"); onset != analysis.end() && onset->is_object()) {
     return fmt::format(
         "; its intervals are not calibrated: the curve ends in a collapse too sharp for the filter (from "
-        "{} {}), filtered apart from the loading, where the factors of delta_x's intervals are calibrated "
-        "at no noise level (docs/analysis.md)",
+        "{} {}), filtered apart from the loading, where delta_x's intervals are calibrated at no noise "
+        "level (docs/analysis.md)",
         number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")));
   }
   const auto& scales = delta.value("interval_scales", json::object());

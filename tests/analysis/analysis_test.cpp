@@ -1084,6 +1084,12 @@ double weibull3_x_p() {
   return best;
 }
 
+// Whether one of the result's warnings holds `text`.
+bool warns(const AnalysisResult& r, std::string_view text) {
+  return std::any_of(r.warnings.begin(), r.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
 }  // namespace
 
 // A curve written as `rupture run` writes it: strain ∝ steps² over a smooth start (10 % of the run),
@@ -1183,9 +1189,7 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
     EXPECT_EQ(to_json(r)["collapse_onset"]["unit"], "1");
     // The intervals take the factors of curves cut by a collapse (ACurveCutByACollapseTakesTheFactorsOf
     // HowCloseItComes), and a warning says the record was cut.
-    EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
-      return w.find("collapse too sharp for the filter") != std::string::npos;
-    })) << seed;
+    EXPECT_TRUE(warns(r, "collapse too sharp for the filter")) << seed;
     EXPECT_NEAR(r.x_p->value, x_p, 0.05 * x_p) << seed;
     EXPECT_NEAR(r.x_c->value, x_c, 0.05 * x_c) << seed;  // rms 1.8 % over 20 seeds (flat top, 2 % noise)
     // 0.15 until the loading's cut end was continued by its trend line (filter_continuing_end): that
@@ -1197,25 +1201,12 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
   }
 }
 
-// A finite bundle (α = 1, N = 10^5: its noise reads as a walk) held from `cut` on and falling by e every
-// 3 rows, as brittle_curve does to the exact law.
-Curve cut_bundle_curve(double cut, std::uint64_t seed) {
-  Curve c = testing::finite_bundle(1.0, 100000, 1000, seed);
-  const double step = c.strain[1] - c.strain[0];
-  const auto held = static_cast<std::size_t>(cut / step);
-  for (std::size_t i = held + 1; i < c.strain.size(); ++i) {
-    const double fall = std::exp(-(c.strain[i] - c.strain[held]) / (3 * step));
-    c.force[i] = c.force[held] * fall;
-    c.energy[i] = c.energy[held] * fall;
-  }
-  return c;
-}
-
 // A curve cut by a collapse takes the collapse tables' factors (collapse_delta_scales and the strain
 // ones) by its noise kind and by how close the collapse comes to the force peak: near at 1.05 x_c, far
 // at 1.2 x_c; each interval is the bootstrap's own stretched by them, and only x_p's far walk cell says
-// calibrated. Under the corner form, which the factors were not learned with, or with the bootstrap's own
-// asked for, the intervals are the bootstrap's own, not calibrated, and the warning says which.
+// calibrated. Under the corner form, which the factors were not learned with, with the bootstrap's own
+// asked for, or on a walk without its step profile, the intervals are the bootstrap's own, not calibrated,
+// and the warning says which.
 TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
   // The cells written out here, not through CollapseIntervalScales::for_curve, so a swap there shows.
   const auto cell = [](const CollapseIntervalScales& table, bool walk, bool near) {
@@ -1225,19 +1216,24 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
   own.calibrated_intervals = false;
   AnalysisOptions corner;
   corner.force_peak_form = PeakForm::corner;
-  const double white_x_c = std::cbrt(1.0 / 3.0), bundle_x_c = std::sqrt(1.0 / 3.0);
+  AnalysisOptions stationary_walk;
+  stationary_walk.uncertainty.walk_profile = false;
+  const auto bundle_shape = calibration::weibull(3);
+  const double white_x_c = std::cbrt(1.0 / 3.0), bundle_x_c = calibration::truth(bundle_shape).x_c;
   for (const bool walk : {false, true}) {
     for (const double cut : {1.05, 1.2}) {
-      const Curve curve =
-          walk ? cut_bundle_curve(cut * bundle_x_c, 4) : brittle_curve(cut * white_x_c, 500, 3);
+      // White: brittle_curve; walk: a finite bundle (N = 10^5) held from the cut on, as the calibration's
+      // brittle bundle groups are.
+      Curve curve = walk ? calibration::finite_bundle_curve(bundle_shape, 1000, 100000, 3)
+                         : brittle_curve(cut * white_x_c, 500, 3);
+      if (walk) calibration::cut_at_collapse(curve, bundle_shape, cut * bundle_x_c, false);
       const auto r = analyze_curve(curve, {});
       const auto bootstrap = analyze_curve(curve, own);
       const std::string which = fmt::format("{} cut at {} x_c", walk ? "bundle" : "white", cut);
       ASSERT_TRUE(r.accepted && bootstrap.accepted) << which << ": " << r.rejection << bootstrap.rejection;
       ASSERT_EQ(scored_as_random_walk(r), walk) << which;
       ASSERT_TRUE(collapse_closeness(r)) << which;
-      // The bundle's own fall past its peak (α = 1) moves the onset found to about 1.13 x_c at a cut of 1.2.
-      if (!walk) EXPECT_NEAR(*collapse_closeness(r), cut - 1.0, 0.03) << which;
+      EXPECT_NEAR(*collapse_closeness(r), cut - 1.0, 0.03) << which;
       const bool near = cut < 1.1;
       ASSERT_EQ(is_near_collapse(*collapse_closeness(r)), near) << which << ": " << *collapse_closeness(r);
       EXPECT_EQ(to_json(r)["collapse_closeness"]["value"].get<double>(), *collapse_closeness(r)) << which;
@@ -1249,7 +1245,6 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_EQ(r.x_c_interval->scales.level68, critical.level68) << which;
       EXPECT_EQ(r.x_p_interval->scales.level95, precursor.level95) << which;
       EXPECT_EQ(r.x_p_interval->scales.calibrated, walk && !near) << which;
-      EXPECT_FALSE(r.interval_scales.calibrated) << which;
       // The same bootstrap, stretched: x_c's and x_p's half-widths are the factor times the own sd, δ_x's
       // the factor times the own half-width on each side.
       EXPECT_DOUBLE_EQ(r.x_c->error, bootstrap.x_c->error) << which;
@@ -1262,19 +1257,18 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_NEAR(r.delay->ci68_high - r.delay->mean,
                   delta.level68 * (bootstrap.delay->ci68_high - bootstrap.delay->mean), 1e-12)
           << which;
-      const auto says = [](const AnalysisResult& a, std::string_view text) {
-        return std::any_of(a.warnings.begin(), a.warnings.end(),
-                           [&](const std::string& w) { return w.find(text) != std::string::npos; });
-      };
-      EXPECT_TRUE(says(r, near ? "x_c after x_c: near" : "x_c after x_c: far")) << which;
-      EXPECT_TRUE(says(r, "take the factors of such curves")) << which;
-      for (const auto& options : {own, corner}) {
-        const auto kept = analyze_curve(curve, options);
-        ASSERT_TRUE(kept.accepted) << which << ": " << kept.rejection;
-        EXPECT_EQ(kept.interval_scales.level68, 1.0) << which;
-        EXPECT_EQ(kept.x_c_interval->scales.level68, 1.0) << which;
-        EXPECT_FALSE(kept.x_p_interval->scales.calibrated) << which;
-        EXPECT_TRUE(says(kept, "are the bootstrap's own, not calibrated")) << which;
+      EXPECT_TRUE(warns(r, near ? "x_c after x_c: near" : "x_c after x_c: far")) << which;
+      EXPECT_TRUE(warns(r, "take the factors of such curves")) << which;
+      EXPECT_TRUE(warns(bootstrap, "are the bootstrap's own, not calibrated")) << which;
+      // The corner form keeps the bootstrap's own; a stationary walk step does on a walk only (a white
+      // curve's intervals do not use the walk's step).
+      for (const auto& [options, kept] : {std::pair{corner, true}, std::pair{stationary_walk, walk}}) {
+        const auto other = analyze_curve(curve, options);
+        ASSERT_TRUE(other.accepted) << which << ": " << other.rejection;
+        EXPECT_EQ(other.interval_scales.level68, kept ? 1.0 : delta.level68) << which;
+        EXPECT_EQ(other.x_c_interval->scales.level68, kept ? 1.0 : critical.level68) << which;
+        EXPECT_FALSE(other.x_p_interval->scales.calibrated) << which;
+        EXPECT_EQ(warns(other, "are the bootstrap's own, not calibrated"), kept) << which;
       }
     }
   }
@@ -1549,8 +1543,7 @@ TEST(AnalyzeCurve, ARingingForceIsReadOnBlockMeansAndItsIntervalsAreNotCalibrate
   EXPECT_FALSE(r.x_c_interval->scales.calibrated);
   EXPECT_FALSE(r.x_p_interval->scales.calibrated);
   EXPECT_FALSE(r.interval_scales.calibrated);
-  EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(),
-                          [](const std::string& w) { return w.find("rings") != std::string::npos; }));
+  EXPECT_TRUE(warns(r, "rings"));
 }
 
 // Replicates that all agree (a bootstrap window read as noise-free) still leave the bias's half as

@@ -262,7 +262,7 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   EXPECT_THAT(cut,
               HasSubstr("its intervals are not calibrated: the curve ends in a collapse too sharp for the "
                         "filter (from 0.4194 %)"));
-  EXPECT_THAT(cut, HasSubstr("where the factors of delta_x's intervals are calibrated at no noise level"));
+  EXPECT_THAT(cut, HasSubstr("where delta_x's intervals are calibrated at no noise level"));
   EXPECT_THAT(cut, Not(HasSubstr("white factors were checked")));
   scales.erase("white_share");
   analysis["collapse_onset"] = nullptr;
