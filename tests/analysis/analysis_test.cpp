@@ -1050,7 +1050,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-30").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-31").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-32").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-33").empty());
+  EXPECT_EQ(calibration_set("held-out-33").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-34").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
