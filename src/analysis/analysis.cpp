@@ -934,6 +934,39 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (was_calibrated) r.warnings.push_back(std::move(why));
 }
 
+// The warning of a record cut by a sharp collapse: where the collapse lies, and whether its intervals
+// took the factors of such curves (`cut_factors`, takes_collapse_factors) or are the bootstrap's own.
+std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
+  const auto closeness = collapse_closeness(r);
+  const std::string where =
+      closeness
+          ? fmt::format(", {:.3g} % of x_c {} x_c: {}", 100.0 * std::abs(*closeness),
+                        *closeness < 0.0 ? "before" : "after", is_near_collapse(*closeness) ? "near" : "far")
+          : std::string();
+  // δ_x's factors apply to the fitted maxima only (the l1 shift's interval is its posterior).
+  const bool delta_scaled = r.delay_method == DelayMethod::fitted_maxima;
+  const std::string intervals =
+      cut_factors
+          ? fmt::format(
+                "the intervals of x_c, x_p{} take the factors of such curves by how close the collapse "
+                "comes (near: less than {:g} % of x_c after it), calibrated only for x_p under a walk with "
+                "a far collapse: on curves with known answers (held-out 32) delta_x's 68 % interval "
+                "covered 64-72 % of them by noise kind and closeness (82 % under white noise with a far "
+                "collapse, which keeps the bootstrap's own), but 42 % of finite bundles cut within 2 % "
+                "past their peak and 55 % of run-like means far from it",
+                delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness)
+          : fmt::format(
+                "the intervals of x_c, x_p{} are the bootstrap's own, not calibrated (the factors of "
+                "such curves apply to a positive x_c under the default peak form with calibrated "
+                "intervals and, on a walk, the walk's step profile)",
+                delta_scaled ? " and delta_x" : "");
+  return fmt::format(
+      "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}{}), filtered apart from "
+      "the loading; {} (docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it "
+      "comes\")",
+      *r.collapse_onset, r.strain_unit, where, intervals);
+}
+
 // The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose factors,
 // where `cut_factors` says they were applied, follow its closeness and, but for x_p's far walk cell,
 // failed their check: collapse_delta_scales), a noise model that read a ringing curve, and a filter the
@@ -945,36 +978,7 @@ void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
         "the smoothing floor strengthened the filter: the interval factors were learned without it, so the "
         "intervals of x_c, x_p and delta_x are not calibrated (under it, held-out 31's white 3 % curves "
         "were covered 181 of 197 at 95 %, 182 needed; docs/analysis.md, \"The smoothing floor\")");
-  if (r.collapse_onset) {
-    const auto closeness = collapse_closeness(r);
-    const std::string where = closeness
-                                  ? fmt::format(", {:.3g} % of x_c {} x_c: {}", 100.0 * std::abs(*closeness),
-                                                *closeness < 0.0 ? "before" : "after",
-                                                is_near_collapse(*closeness) ? "near" : "far")
-                                  : std::string();
-    // δ_x's factors apply to the fitted maxima only (the l1 shift's interval is its posterior).
-    const bool delta_scaled = r.delay_method == DelayMethod::fitted_maxima;
-    const std::string intervals =
-        cut_factors
-            ? fmt::format(
-                  "the intervals of x_c, x_p{} take the factors of such curves by how close the collapse "
-                  "comes (near: less than {:g} % of x_c after it), calibrated only for x_p under a walk with "
-                  "a far collapse: on curves with known answers (held-out 32) delta_x's 68 % interval "
-                  "covered 64-72 % of them by noise kind and closeness (82 % under white noise with a far "
-                  "collapse, which keeps the bootstrap's own), but 42 % of finite bundles cut within 2 % "
-                  "past their peak and 55 % of run-like means far from it",
-                  delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness)
-            : fmt::format(
-                  "the intervals of x_c, x_p{} are the bootstrap's own, not calibrated (the factors of "
-                  "such curves apply to a positive x_c under the default peak form with calibrated "
-                  "intervals and, on a walk, the walk's step profile)",
-                  delta_scaled ? " and delta_x" : "");
-    r.warnings.push_back(fmt::format(
-        "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}{}), filtered apart from "
-        "the loading; {} (docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it "
-        "comes\")",
-        *r.collapse_onset, r.strain_unit, where, intervals));
-  }
+  if (r.collapse_onset) r.warnings.push_back(collapse_warning(r, cut_factors));
   if (ringing_read(r)) {
     const auto& f = r.noise_model.force;
     const auto& e = r.noise_model.energy;
@@ -989,18 +993,24 @@ void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
   }
 }
 
+// Whether a record cut by a sharp collapse takes the factors of such curves, which follow how close the
+// collapse comes to the force peak: they were learned with calibrated intervals, a positive x_c, the
+// default peak form and, on a walk, the walk's step profile; under others it keeps the bootstrap's own.
+bool takes_collapse_factors(const AnalysisResult& r, const AnalysisOptions& options) {
+  return options.calibrated_intervals && r.collapse_onset && collapse_closeness(r) &&
+         options.force_peak_form == PeakForm::smooth &&
+         (options.uncertainty.walk_profile || !scored_as_random_walk(r));
+}
+
 // 7. δ_x by the chosen method, then Γ and α, and the acceptance of the uncertainty.
 void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInterval& direct,
                     const AnalysisOptions& options, AnalysisResult& r) {
   const auto& boot = run.boot;
   DelayPosterior delay;
   const bool walk_profile = options.uncertainty.walk_profile;
-  // A record cut by a sharp collapse takes the factors of such curves, which follow how close the
-  // collapse comes to the force peak (collapse_scales); they were learned under the default peak form
-  // and, on a walk, the walk's step profile, so under others such a record keeps the bootstrap's own.
-  const bool cut_factors = options.calibrated_intervals && r.collapse_onset && collapse_closeness(r) &&
-                           options.force_peak_form == PeakForm::smooth &&
-                           (walk_profile || !scored_as_random_walk(r));
+  // A record cut by a sharp collapse takes the factors of such curves where it can (collapse_scales),
+  // else the bootstrap's own.
+  const bool cut_factors = takes_collapse_factors(r, options);
   const auto factors = [&](IntervalScales uncut, const CollapseIntervalScales& cut,
                            std::optional<double> level) {
     if (!options.calibrated_intervals) return uncalibrated_scales;
