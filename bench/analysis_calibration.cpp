@@ -168,8 +168,11 @@ int main(int argc, char** argv) {
       }
       c68 += d.ci68_low <= t.delta() && t.delta() <= d.ci68_high;
       c95 += d.ci95_low <= t.delta() && t.delta() <= d.ci95_high;
-      xc95 += std::abs(r.x_c->value - t.x_c) <= 1.96 * r.x_c->error;
-      xp95 += std::abs(r.x_p->value - t.x_p) <= 1.96 * r.x_p->error;
+      const auto covers95 = [](const StrainInterval& i, double truth) {
+        return i.ci95_low <= truth && truth <= i.ci95_high;
+      };
+      xc95 += covers95(*r.x_c_interval, t.x_c);
+      xp95 += covers95(*r.x_p_interval, t.x_p);
       rel += (d.mean - t.delta()) / t.delta();
       sq += std::pow((d.mean - t.delta()) / t.delta(), 2);
       AnalysisOptions l1 = unscaled;

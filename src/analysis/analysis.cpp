@@ -536,13 +536,14 @@ PeakValues smoothing_shift(std::span<const double> xs, std::span<const double> f
 }
 
 // δ_x of the fitted maxima as a DelayPosterior: the interval's numbers, each level's half-widths
-// scaled about the estimate by the factors for the curve's kind of noise (delta_interval_scales), and
-// the replicates' density centred on the estimate and widened as the bootstrap interval was.
+// scaled about the estimate by the factors for the curve's kind of noise (delta_interval_scales), its sd
+// by the 68 % factor, and the replicates' density centred on the estimate and widened as that sd was.
 DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vector<double> deltas,
                                      const IntervalScales& scales) {
   DelayPosterior delay;
   delay.mean = delay.map = delay.median = direct.estimate;
-  delay.sd = direct.sd;
+  delay.unscaled_sd = direct.sd;
+  delay.sd = scales.level68 * direct.sd;
   const auto scaled = [&](double bound, double scale) {
     return direct.estimate + scale * (bound - direct.estimate);
   };
@@ -554,7 +555,7 @@ DelayPosterior delay_from_replicates(const BootstrapInterval& direct, std::vecto
   std::vector<double> sorted = deltas;
   std::sort(sorted.begin(), sorted.end());
   const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
-  const double widen = direct.spread > 0.0 ? direct.sd / direct.spread : 1.0;
+  const double widen = direct.spread > 0.0 ? delay.sd / direct.spread : 1.0;
   for (auto& d : deltas) d = direct.estimate + widen * (d - median);
   sampling_density(deltas, delay);
   return delay;
@@ -910,10 +911,12 @@ BootstrapInterval record_intervals(const Grid& g, const BootstrapRun& run, const
 }
 
 // x_c's or x_p's intervals about the estimate, sized by their factors (critical_strain_scales,
-// precursor_scales); unscaled where the options ask for the bootstrap's own.
+// precursor_scales); unscaled where the options ask for the bootstrap's own. The reported sd becomes the
+// 68 % interval's half-width, so that the ± beside the number says what its interval says.
 // The 95 % interval is never inside the 68 % one, as for δ_x.
-StrainInterval strain_interval(const Measured& m, const IntervalScales& scales) {
+StrainInterval take_strain_interval(Measured& m, const IntervalScales& scales) {
   const double half68 = scales.level68 * m.error, half95 = std::max(1.96 * scales.level95 * m.error, half68);
+  m.error = half68;
   return {.ci68_low = m.value - half68,
           .ci68_high = m.value + half68,
           .ci95_low = m.value - half95,
@@ -1017,7 +1020,7 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
     if (!r.collapse_onset) return uncut;
     return cut_factors ? collapse_scales(cut, r, level) : uncalibrated_scales;
   };
-  r.x_c_interval = strain_interval(
+  r.x_c_interval = take_strain_interval(
       *r.x_c, factors(critical_scales(r, walk_profile), collapse_critical_scales, critical_noise_level(r)));
   if (force_walk_hidden(r) && r.x_c_interval->scales.calibrated) {
     r.x_c_interval->scales.calibrated = false;
@@ -1027,8 +1030,8 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
         "leaves F's walk out and is not calibrated (it covered 24-50 % at 68 % on such curves with known "
         "answers; docs/analysis.md, \"Known limits\")");
   }
-  r.x_p_interval = strain_interval(*r.x_p, factors(precursor_scales(r, walk_profile),
-                                                   collapse_precursor_scales, precursor_noise_level(r)));
+  r.x_p_interval = take_strain_interval(*r.x_p, factors(precursor_scales(r, walk_profile),
+                                                        collapse_precursor_scales, precursor_noise_level(r)));
   if (options.delay_method == DelayMethod::fitted_maxima) {
     r.interval_scales = factors(delay_scales(r, walk_profile), collapse_delta_scales, delay_noise_level(r));
     delay = delay_from_replicates(
@@ -1065,9 +1068,11 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
                "the peaks are unstable under the curve's own noise: in {} of {} noise replicates a maximum "
                "was not found",
                boot.failed, boot.attempted));
-  } else if (delay.sd > rules.max_relative_delay_sd * std::abs(r.x_c->value - g.curves.x0)) {
-    reject(r, fmt::format("δ_x too uncertain: sd {:.3g} {} exceeds {:g} of x_c", delay.sd, r.strain_unit,
-                          rules.max_relative_delay_sd));
+  } else if (delay.unscaled_sd > rules.max_relative_delay_sd * std::abs(r.x_c->value - g.curves.x0)) {
+    // The rule reads the sd before the interval factors: it was set on it, and the factors calibrate the
+    // intervals, not whether the peaks are found.
+    reject(r, fmt::format("δ_x too uncertain: sd {:.3g} {} (before the interval factors) exceeds {:g} of x_c",
+                          delay.unscaled_sd, r.strain_unit, rules.max_relative_delay_sd));
   }
 }
 

@@ -90,6 +90,7 @@ nlohmann::json delay_json(const AnalysisResult& r) {
                           {"mean", d.mean},
                           {"median", d.median},
                           {"sd", d.sd},
+                          {"unscaled_sd", d.unscaled_sd},
                           {"ci68", {d.ci68_low, d.ci68_high}},
                           {"ci95", {d.ci95_low, d.ci95_high}}};
   const nlohmann::json density = {{"delta", io::quantity(d.delta, r.strain_unit)},
@@ -98,7 +99,8 @@ nlohmann::json delay_json(const AnalysisResult& r) {
     delta["model"] =
         "x_c - x_p of the cubic peak fits; intervals: basic parametric bootstrap of the curve's noise, each "
         "level's half-widths scaled by interval_scales (calibrated per kind of noise; 1, the bootstrap's "
-        "own, on a random walk with a stationary step: docs/analysis.md, Calibration)";
+        "own, on a random walk with a stationary step: docs/analysis.md, Calibration); sd scaled by the 68 % "
+        "factor, unscaled_sd before it";
     delta["interval_scales"] = scales_json(r.interval_scales, r);
     delta["bias"] = r.bootstrap_bias.delta_x;
     delta["sampling_distribution"] = density;

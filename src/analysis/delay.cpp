@@ -240,7 +240,7 @@ void summarise(const std::vector<double>& grid, const std::vector<double>& log_d
                                                     log_density.begin());
   post.map = grid[best];
   post.mean = mass > 0.0 ? mean : post.map;
-  post.sd = mass > 0.0 ? std::sqrt(std::max(0.0, second - mean * mean)) : 0.0;
+  post.sd = post.unscaled_sd = mass > 0.0 ? std::sqrt(std::max(0.0, second - mean * mean)) : 0.0;
   post.median = quantile(grid, cdf, 0.5);
   post.ci68_low = quantile(grid, cdf, 0.15865525393145707);
   post.ci68_high = quantile(grid, cdf, 0.8413447460685429);

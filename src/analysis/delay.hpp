@@ -32,7 +32,10 @@ struct DelayOptions {
 
 struct DelayPosterior {
   std::vector<double> delta, density;  // grid (strain units) and normalised density (1/strain unit)
-  double map = 0.0, mean = 0.0, median = 0.0, sd = 0.0;
+  double map = 0.0, mean = 0.0, median = 0.0;
+  // sd: one standard deviation as reported, scaled as the 68 % interval is (half its width where it is
+  // symmetric); unscaled_sd: the same before any interval factor, which the acceptance rule reads.
+  double sd = 0.0, unscaled_sd = 0.0;
   double ci68_low = 0.0, ci68_high = 0.0, ci95_low = 0.0, ci95_high = 0.0;  // equal-tailed
   double prior_low = 0.0, prior_high = 0.0;
   double noise_sigma = 0.0, misfit_scale = 0.0, correlation = 1.0;  // σ̂, s, τ

@@ -308,7 +308,8 @@ std::string analysis_section(const json& analysis) {
       measured_row("A_r", "E_max/(x_p ℰ_max)", analysis["A_r"])};
   std::string html =
       "<h2>Analysis</h2>\n<p>From <code>analysis.json</code>; uncertainties are one standard "
-      "deviation.</p>\n";
+      "deviation: for x<sub>p</sub>, x<sub>c</sub> and δ<sub>x</sub> the bootstrap's scaled as their 68 % "
+      "intervals are (half that interval's width), for the others the bootstrap's own.</p>\n";
   html +=
       table({"quantity", "meaning", "value", "uncertainty", "unit"}, rows, {false, false, true, true, false});
   if (const auto& delta = analysis["delta_x"]; delta.is_object()) {

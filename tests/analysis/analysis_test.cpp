@@ -601,28 +601,39 @@ TEST(IntervalScales, PrecursorWhiteFactorsFollowTheMeasuredNoiseLevel) {
 
 // x_c's and x_p's intervals are ± factor × sd about the estimate (± 1.96 factor × sd at 95 %), with
 // the factors of the noise kind scored (1 where none passed a held-out check, and marked so), and written
-// to analysis.json.
+// to analysis.json. The ± reported beside each number, δ_x's too, is the bootstrap's own sd scaled by the
+// 68 % factor: what the 68 % interval says; δ_x keeps the sd before it for the acceptance rule.
 TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   using namespace calibration;
-  const auto bundle = analyze_curve(finite_bundle_curve(weibull(3), 1000, 100000, 7), {});
-  const auto white = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), {});
-  for (const auto* r : {&bundle, &white}) {
-    ASSERT_TRUE(r->accepted) << r->rejection;
-    const bool walk = scored_as_random_walk(*r);
-    for (const auto& [m, interval, scales] :
-         {std::tuple{*r->x_c, *r->x_c_interval, critical_strain_scales.for_noise(walk, true)},
-          std::tuple{*r->x_p, *r->x_p_interval, precursor_scales(*r, true)}}) {
-      EXPECT_NEAR(interval.ci68_high - m.value, scales.level68 * m.error, 1e-12 * m.error);
-      EXPECT_NEAR(m.value - interval.ci95_low, std::max(1.96 * scales.level95, scales.level68) * m.error,
-                  1e-12 * m.error);
+  AnalysisOptions unscaled;
+  unscaled.calibrated_intervals = false;
+  const auto bundle_curve = finite_bundle_curve(weibull(3), 1000, 100000, 7);
+  const auto white_curve = white_noise_curve(weibull(3), 1000, 0.01, 7);
+  const auto bundle = analyze_curve(bundle_curve, {});
+  const auto white = analyze_curve(white_curve, {});
+  for (const auto& [analysed, curve] : {std::pair{&bundle, &bundle_curve}, std::pair{&white, &white_curve}}) {
+    const auto& r = *analysed;
+    const auto bootstrap = analyze_curve(*curve, unscaled);
+    ASSERT_TRUE(r.accepted && bootstrap.accepted) << r.rejection << bootstrap.rejection;
+    const bool walk = scored_as_random_walk(r);
+    for (const auto& [m, own_sd, interval, scales] :
+         {std::tuple{*r.x_c, bootstrap.x_c->error, *r.x_c_interval,
+                     critical_strain_scales.for_noise(walk, true)},
+          std::tuple{*r.x_p, bootstrap.x_p->error, *r.x_p_interval, precursor_scales(r, true)}}) {
+      EXPECT_NEAR(m.error, scales.level68 * own_sd, 1e-12 * own_sd);
+      EXPECT_NEAR(interval.ci68_high - m.value, m.error, 1e-12 * own_sd);
+      EXPECT_NEAR(m.value - interval.ci95_low, std::max(1.96 * scales.level95, scales.level68) * own_sd,
+                  1e-12 * own_sd);
       EXPECT_EQ(interval.scales.level95, scales.level95);
       EXPECT_EQ(interval.scales.calibrated, scales.calibrated);
     }
-    const auto j = to_json(*r);
+    EXPECT_NE(r.interval_scales.level68, 1.0);  // else the two lines below cannot tell scaled from own
+    EXPECT_NEAR(r.delay->sd, r.interval_scales.level68 * bootstrap.delay->sd, 1e-12 * bootstrap.delay->sd);
+    EXPECT_EQ(r.delay->unscaled_sd, bootstrap.delay->sd);
+    const auto j = to_json(r);
     EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], walk ? "random walk" : "white");
-    EXPECT_EQ(j["x_p"]["ci95"][1].get<double>(), r->x_p_interval->ci95_high);
-    EXPECT_EQ(j["uncertainty"]["systematic"]["x_c"]["peak_fit"]["value"].get<double>(),
-              r->peak_fit_error.x_c);
+    EXPECT_EQ(j["x_p"]["ci95"][1].get<double>(), r.x_p_interval->ci95_high);
+    EXPECT_EQ(j["uncertainty"]["systematic"]["x_c"]["peak_fit"]["value"].get<double>(), r.peak_fit_error.x_c);
   }
   EXPECT_TRUE(reads_random_walk(bundle));
   EXPECT_FALSE(reads_random_walk(white));
@@ -656,8 +667,6 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
   EXPECT_EQ(j["delta_x"]["interval_scales"]["white_share"].get<double>(), *delay_level);
   EXPECT_EQ(j["x_c"]["interval_scales"]["force_white_share"].get<double>(), *force_level);
   EXPECT_FALSE(j["delta_x"]["interval_scales"]["calibrated"].get<bool>());
-  AnalysisOptions unscaled;
-  unscaled.calibrated_intervals = false;
   const auto own = analyze_curve(white_noise_curve(weibull(3), 1000, 0.01, 7), unscaled);
   EXPECT_EQ(own.x_c_interval->ci68_high, own.x_c->value + own.x_c->error);
   EXPECT_EQ(own.x_c_interval->ci95_low, own.x_c->value - 1.96 * own.x_c->error);
@@ -1247,10 +1256,12 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_EQ(r.x_p_interval->scales.level95, precursor.level95) << which;
       EXPECT_EQ(r.x_p_interval->scales.calibrated, walk && !near) << which;
       // The same bootstrap, stretched: x_c's and x_p's half-widths are the factor times the own sd, δ_x's
-      // the factor times the own half-width on each side.
-      EXPECT_DOUBLE_EQ(r.x_c->error, bootstrap.x_c->error) << which;
+      // the factor times the own half-width on each side; the reported sd of each is the own sd times the
+      // 68 % factor.
+      EXPECT_NEAR(r.x_c->error, critical.level68 * bootstrap.x_c->error, 1e-12) << which;
       EXPECT_NEAR(r.x_c_interval->ci68_high - r.x_c->value, critical.level68 * bootstrap.x_c->error, 1e-12)
           << which;
+      EXPECT_NEAR(r.delay->sd, delta.level68 * bootstrap.delay->sd, 1e-12) << which;
       EXPECT_NEAR(r.x_p_interval->ci95_high - r.x_p->value,
                   std::max(1.96 * precursor.level95, precursor.level68) * bootstrap.x_p->error, 1e-12)
           << which;
