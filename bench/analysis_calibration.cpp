@@ -3,7 +3,7 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-33|all]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-34|all]
 // [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between|brittle|brittle-close:
 // the noise groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do;
 // white-between: white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and
@@ -13,7 +13,8 @@
 // tissue's does; calibration_set.hpp] [walk-profile (the default): random-walk steps that follow the curve
 // (BootstrapOptions::walk_profile) | stationary-walk: one step along the curve | corner: walk-profile with
 // the force's top fitted as a corner at a collapse, AnalysisOptions::force_peak_form | rule-alone:
-// walk-profile without the smoothing floor, AnalysisOptions::smoothing_floor_share = 0]. The per-curve file
+// walk-profile without the smoothing floor, AnalysisOptions::smoothing_floor_share = 0 (the default) |
+// smoothing-floor: walk-profile with the floor at a quarter of the rise, smoothing_floor_share = 0.25]. The per-curve file
 // holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak fits' own errors (the
 // systematic terms in x_c's and x_p's sd) and the noise the analysis measured on F and E_e as a share of
 // their maxima, with its white and random-walk parts (per sample and per step) apart (files before held-out
@@ -46,15 +47,15 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-33, all\n",
+                 "held-out-34, all\n",
                  which.c_str());
     return 2;
   }
   if (!variant.empty() && variant != "walk-profile" && variant != "stationary-walk" && variant != "corner" &&
-      variant != "rule-alone") {
+      variant != "rule-alone" && variant != "smoothing-floor") {
     std::fprintf(stderr,
                  "analysis_calibration: unknown variant '%s'; name walk-profile, stationary-walk, corner, "
-                 "rule-alone or nothing\n",
+                 "rule-alone, smoothing-floor or nothing\n",
                  variant.c_str());
     return 2;
   }
@@ -90,6 +91,7 @@ int main(int argc, char** argv) {
   unscaled.uncertainty.walk_profile = variant != "stationary-walk";
   if (variant == "corner") unscaled.force_peak_form = PeakForm::corner;
   if (variant == "rule-alone") unscaled.smoothing_floor_share = 0.0;
+  if (variant == "smoothing-floor") unscaled.smoothing_floor_share = 0.25;
   std::printf(
       "| group | curves | accepted | δ_x 68 %% | δ_x 95 %% | x_c 95 %% | x_p 95 %% | δ_x mean rel. error | "
       "δ_x rms (ours) | δ_x rms (shift-l1) |\n");

@@ -635,6 +635,22 @@ bool carries_noise(std::span<const double> y) {
 // at rows every 1,000 steps, a rise of ~40 rows, lost 14 of 29 accepted analyses).
 constexpr double smoothing_floor_min_rise = 100.0;
 
+// On a record cut by a collapse, where under the smoothing floor ℰ's maximum lies closer to F's than this
+// share of the rise from the record's start to F's maximum, the floor is withdrawn: its edge, an eighth
+// of the rise, then reaches from the precursor over the force peak into the collapse and pulls x_p
+// there (held-out 31's dem-like curves of the power laws α = 7.4 and 9.1). A record that goes on past
+// its peak has no cut to reach. 0.15 was chosen on held-out 31's per-curve files (docs/analysis.md,
+// "The smoothing floor withdrawn where it reaches into a collapse").
+constexpr double smoothing_floor_min_delay_share = 0.15;
+
+// Whether the floor's filter reaches from ℰ's maximum over the force peak into a collapse (or either
+// maximum was not found before it).
+bool floor_reaches_into_collapse(const PeakMeasurement& m, double x0) {
+  if (!m.collapse_onset) return false;
+  if (!m.force.found || !m.rate.found) return true;
+  return m.force.x - m.rate.x < smoothing_floor_min_delay_share * (m.force.x - x0);
+}
+
 // Step 2's bounds on the automatic choice, in samples of the rise from the first row to the maximum
 // of F filtered with that choice.
 // - The cap (random walk): on a bundle's increments the steps' noise can exceed all the slope's
@@ -1130,22 +1146,42 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
-  const auto onset = choose_filter_for_loading(
-      g, options.filter, {options.random_walk_smoothing_share, options.smoothing_floor_share},
-      options.acceptance.collapse_fraction, r);  // 2
-  // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
-  const PeakSearch search{
-      .filter = r.filter,
-      .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
-      .peak = options.peak,
-      .collapse_fraction = options.acceptance.collapse_fraction,
-      .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
-      .collapse_onset = onset,
-      .past_filter_edge = true,
-      .force_peak_form = options.force_peak_form,
-      .strain_unit = r.strain_unit};
+  // 2-4, with the smoothing floor where asked for; where under it ℰ's maximum lies too close to F's
+  // before a collapse (floor_reaches_into_collapse), again with the discrepancy rule's filter alone.
+  const auto filter_and_measure = [&](double floor) {
+    FilterSettings filter = options.filter;
+    const auto onset = choose_filter_for_loading(g, filter, {options.random_walk_smoothing_share, floor},
+                                                 options.acceptance.collapse_fraction, r);  // 2
+    // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
+    PeakSearch search{
+        .filter = r.filter,
+        .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
+        .peak = options.peak,
+        .collapse_fraction = options.acceptance.collapse_fraction,
+        .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
+        .collapse_onset = onset,
+        .past_filter_edge = true,
+        .force_peak_form = options.force_peak_form,
+        .strain_unit = r.strain_unit};
+    auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
+    return std::pair{std::move(search), std::move(measurement)};
+  };
+  const std::size_t curve_warnings = r.warnings.size();
+  auto [search, measurement] = filter_and_measure(options.smoothing_floor_share);
+  if (r.smoothing_floor_applied && floor_reaches_into_collapse(measurement, g.curves.x0)) {
+    r.warnings.resize(curve_warnings);  // the filter's reading is made again, warnings included
+    std::tie(search, measurement) = filter_and_measure(0.0);
+    r.smoothing_floor_withdrawn = true;
+    r.warnings.push_back(fmt::format(
+        "the smoothing floor was withdrawn: under it the energy-rate maximum lay within {:g} % of the rise "
+        "before "
+        "the force maximum, so its edge reached over the force peak into the collapse; the discrepancy "
+        "rule's "
+        "filter alone serves (docs/analysis.md, \"The smoothing floor withdrawn where it reaches into a "
+        "collapse\")",
+        100.0 * smoothing_floor_min_delay_share));
+  }
   r.derivative_window = search.derivative_window;
-  const auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
   record_peaks(measurement, g, r);
   if (options.force_peak_form == PeakForm::corner && r.force_peak->found && !r.force_peak->corner)
     r.warnings.push_back(

@@ -108,7 +108,8 @@ struct AnalysisOptions {
   // under-smoothed, and a ringing sampled a few rows a period looks like signal to it. 0.25 mends DEM
   // runs at rows every 100-200 steps and white noise on dense rows, but moves x_p on sharp peaks (δ_x
   // under a tenth of x_c) and failed held-out 31's rule on the dem-like groups, so it is an option
-  // (docs/analysis.md, "The smoothing floor").
+  // (docs/analysis.md, "The smoothing floor"). On a record cut by a collapse it is withdrawn where under
+  // it ℰ's maximum lies within 0.15 of the rise before F's (AnalysisResult::smoothing_floor_withdrawn).
   double smoothing_floor_share = 0.0;
   // δ_x's, x_c's and x_p's intervals scaled by their factors (delta_interval_scales and the strain
   // scales, below); false keeps the bootstrap's own, from which bench/interval_scales.py learns them.
@@ -312,8 +313,9 @@ struct AnalysisResult {
   // The noise kind read in each curve over the whole record: whether a random walk dominates it.
   // One filter serves both; its automatic choice ran on the increments where either reads so.
   bool force_walk = false, energy_walk = false;
-  // Whether AnalysisOptions::smoothing_floor_share strengthened the automatic filter.
-  bool smoothing_floor_applied = false;
+  // Whether AnalysisOptions::smoothing_floor_share strengthened the automatic filter, and whether it was
+  // withdrawn again because under it ℰ's maximum lay too close to F's.
+  bool smoothing_floor_applied = false, smoothing_floor_withdrawn = false;
   // White noise in the bootstrap window below quiet_white_noise_share of both peaks: the intervals
   // then take the random walk's factors whatever the whole record reads.
   bool quiet = false;

@@ -42,7 +42,8 @@ nlohmann::json filter_json(const AnalysisResult& r) {
       {"zero_phase", true},
       {"discrepancy", r.filter.discrepancy},
       {"noise_read", {{"force", noise_name(r.force_walk)}, {"elastic_energy", noise_name(r.energy_walk)}}},
-      {"smoothing_floor_applied", r.smoothing_floor_applied}};
+      {"smoothing_floor_applied", r.smoothing_floor_applied},
+      {"smoothing_floor_withdrawn", r.smoothing_floor_withdrawn}};
   if (r.filter.kind == FilterKind::butterworth) {
     filter["order"] = r.filter.butterworth_order;
     filter["cutoff_nyquist"] = r.filter.cutoff;

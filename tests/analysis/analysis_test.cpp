@@ -1060,7 +1060,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-31").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-32").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-33").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-34").empty());
+  EXPECT_EQ(calibration_set("held-out-34").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-35").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
@@ -1445,6 +1446,42 @@ TEST(AnalyzeCurve, ARingingRunAtFineRowsIsSmoothedOverAQuarterOfItsRise) {
   EXPECT_LE(rule_score.accepted, 10);
   EXPECT_LT(floor_score.rms(), 0.06);
   EXPECT_GT(rule_score.rms(), 0.07);
+}
+
+// Under the smoothing floor a quarter of the rise reaches from ℰ's maximum over the force peak into the
+// collapse on dem-like curves of held-out 31's sharp power laws (α = 7.4 and 9.1): the floor is
+// withdrawn there, and the analysis is the rule alone's, number for number. A record that goes on past
+// its peak (Weibull k = 3 under 0.2 % white noise, 5,000 rows) keeps it.
+TEST(AnalyzeCurve, TheSmoothingFloorIsWithdrawnWhereItReachesIntoACollapse) {
+  using namespace calibration;
+  const auto set = calibration_set("held-out-31");
+  const NoiseGroup group = dem_like_noise_groups()[5];
+  ASSERT_EQ(group.name, "dem-like rows every 400 means");
+  AnalysisOptions floor;
+  floor.smoothing_floor_share = 0.25;
+  for (const int k : {1, 7}) {
+    const auto curve_case = CalibrationCase::at(set, k);
+    ASSERT_TRUE(curve_case.shape.name.starts_with("powerlaw alpha=")) << curve_case.shape.name;
+    const Curve c = curve_case.draw(group);
+    const auto floored = analyze_curve(c, floor), rule = analyze_curve(c, {});
+    ASSERT_TRUE(rule.collapse_onset) << k;
+    EXPECT_TRUE(floored.smoothing_floor_withdrawn) << k;
+    EXPECT_FALSE(floored.smoothing_floor_applied) << k;
+    EXPECT_EQ(floored.filter.cutoff, rule.filter.cutoff) << k;
+    EXPECT_EQ(floored.accepted, rule.accepted) << k;
+    if (rule.x_p && floored.x_p) EXPECT_EQ(floored.x_p->value, rule.x_p->value) << k;
+    if (rule.delay && floored.delay) EXPECT_EQ(floored.delay->ci95_high, rule.delay->ci95_high) << k;
+    EXPECT_TRUE(warns(floored, "the smoothing floor was withdrawn")) << k;
+    auto others = floored.warnings;  // the rule alone's, and the one that says so
+    std::erase_if(others,
+                  [](const std::string& w) { return w.starts_with("the smoothing floor was withdrawn"); });
+    EXPECT_EQ(others, rule.warnings) << k;
+    EXPECT_TRUE(to_json(floored)["filter"]["smoothing_floor_withdrawn"].get<bool>()) << k;
+  }
+  const auto past_peak = analyze_curve(white_noise_curve(weibull(3), 5000, 0.002, 1), floor);
+  ASSERT_TRUE(past_peak.accepted) << past_peak.rejection;
+  EXPECT_TRUE(past_peak.smoothing_floor_applied);
+  EXPECT_FALSE(past_peak.smoothing_floor_withdrawn);
 }
 
 // Dem-like curves (a force that rises to a corner and sags to the collapse, as a tissue's does; rows
