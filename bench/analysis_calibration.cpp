@@ -14,18 +14,19 @@
 // (BootstrapOptions::walk_profile) | stationary-walk: one step along the curve | corner: walk-profile with
 // the force's top fitted as a corner at a collapse, AnalysisOptions::force_peak_form | rule-alone:
 // walk-profile without the smoothing floor, AnalysisOptions::smoothing_floor_share = 0 (the default) |
-// smoothing-floor: walk-profile with the floor at a quarter of the rise, smoothing_floor_share = 0.25]. The per-curve file
-// holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak fits' own errors (the
-// systematic terms in x_c's and x_p's sd) and the noise the analysis measured on F and E_e as a share of
-// their maxima, with its white and random-walk parts (per sample and per step) apart (files before held-out
-// 22 lack the first two columns, before held-out-22-edge the other four, before the dem-like groups the
-// maxima's smoothing shifts, last). `noise` is the kind whose factors the intervals take
-// (scored_as_random_walk), `noise_read` the kind read over the whole record (reads_random_walk; from held-out
-// 24 on; before, `noise` was that), from which bench/interval_scales.py learns the per-level interval scales
-// (on the tuning set) and checks them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed
-// before the change it checks and run once for it; docs/analysis.md, "Calibration", lists them in the order
-// they were used (held-out 6 checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a
-// noise-kind reading, held-out 9 and 10 the energy-rate search's edge).
+// smoothing-floor: walk-profile with the floor at a quarter of the rise, smoothing_floor_share = 0.25]. The
+// per-curve file holds each curve's truth, estimates, intervals, the bootstrap's biases, the peak fits' own
+// errors (the systematic terms in x_c's and x_p's sd) and the noise the analysis measured on F and E_e as a
+// share of their maxima, with its white and random-walk parts (per sample and per step) apart (files before
+// held-out 22 lack the first two columns, before held-out-22-edge the other four, before the dem-like groups
+// the maxima's smoothing shifts, before held-out 34 the smoothing floor's effect, "applied", "withdrawn" or
+// empty, last). `noise` is the kind whose factors the intervals take (scored_as_random_walk), `noise_read`
+// the kind read over the whole record (reads_random_walk; from held-out 24 on; before, `noise` was that),
+// from which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and checks
+// them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it checks and
+// run once for it; docs/analysis.md, "Calibration", lists them in the order they were used (held-out 6 checks
+// the white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind reading, held-out 9 and 10
+// the energy-rate search's edge).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -82,7 +83,8 @@ int main(int argc, char** argv) {
                  "ci68_low,ci68_high,ci95_low,ci95_high,x_c_true,x_c,x_c_sd,x_p_true,x_p,x_p_sd,delta_x_bias,"
                  "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
                  "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share,"
-                 "noise_read,collapse_cut,collapse_onset,x_c_smoothing_shift,x_p_smoothing_shift\n";
+                 "noise_read,collapse_cut,collapse_onset,x_c_smoothing_shift,x_p_smoothing_shift,"
+                 "smoothing_floor\n";
     per_curve.precision(10);
   }
   AnalysisOptions
@@ -149,7 +151,12 @@ int main(int argc, char** argv) {
           per_curve << r.smoothing_shift.x_c << ',' << r.smoothing_shift.x_p;
         else
           per_curve << ',';
-        per_curve << '\n' << std::flush;
+        per_curve << ','
+                  << (r.smoothing_floor_applied     ? "applied"
+                      : r.smoothing_floor_withdrawn ? "withdrawn"
+                                                    : "")
+                  << '\n'
+                  << std::flush;
       }
       if (!r.accepted || !r.delay) {
         std::fprintf(stderr, "%s, %s, %zu rows, seed %llu: rejected: %s\n", g.name.c_str(), s.name.c_str(),

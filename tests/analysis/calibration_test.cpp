@@ -124,8 +124,10 @@ TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
     ASSERT_FALSE(scored_as_random_walk(r)) << s.name << ", " << rows << " rows: white noise read as a walk";
     const auto exact = calibration::truth(s);
     const auto& d = *r.delay;
-    ASSERT_TRUE(r.interval_scales.calibrated && r.x_c_interval->scales.calibrated)
-        << s.name << ": δ_x's and x_c's white intervals at these levels are calibrated";
+    ASSERT_TRUE(r.interval_scales.calibrated)
+        << s.name << ": δ_x's white intervals at these levels are calibrated";
+    // x_c's white factors failed held-out 34 at 95 % by a few curves: applied, not calibrated, still guarded.
+    ASSERT_FALSE(r.x_c_interval->scales.calibrated) << s.name;
     // x_p's level model failed held-out 30 by two curves: applied, not calibrated, still guarded here.
     ASSERT_EQ(r.x_p_interval->scales.calibrated, precursor_white_levels.passed_last_check) << s.name;
     delta.add(exact.delta(), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
