@@ -42,7 +42,8 @@ void force_sweep_impl(const StepContext& step, ParticleStore& particles, const B
   const std::uint32_t* __restrict nb = neighbours.list.data();
   {
     auto& flags = breaks.flagged[std::size_t(omp_get_thread_num())];
-#pragma omp for schedule(static)
+    // No barrier of its own: every caller ends its parallel region with this sweep, whose join waits.
+#pragma omp for schedule(static) nowait
     for (std::uint32_t a = 0; a < n; ++a) {
       const double xa = x[a], ya = y[a], za = z[a];
       double fx = 0.0, fy = 0.0, fz = 0.0, elastic = 0.0, contact_energy = 0.0;

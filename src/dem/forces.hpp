@@ -21,7 +21,8 @@ void force_pass(const StepContext& step, ParticleStore& particles, const BondSto
                 const NeighbourList& neighbours, BreakLedger& breaks, const Params& params, bool parallel,
                 EnergyParts* energies = nullptr);
 // The pass's loop, called by every thread of the caller's parallel region (the step's, dem/system),
-// after breaks.prepare(omp_get_max_threads()); the threads are synchronised when it returns.
+// after breaks.prepare(omp_get_max_threads()). It ends without a barrier: the caller ends its region
+// with it (whose join waits) or waits itself before anything reads the forces, velocities or flags.
 void force_sweep(const StepContext& step, ParticleStore& particles, const BondStore& bonds,
                  const NeighbourList& neighbours, BreakLedger& breaks, const Params& params,
                  EnergyParts* energies = nullptr);
