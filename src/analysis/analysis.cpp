@@ -1173,12 +1173,10 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
     std::tie(search, measurement) = filter_and_measure(0.0);
     r.smoothing_floor_withdrawn = true;
     r.warnings.push_back(fmt::format(
-        "the smoothing floor was withdrawn: under it the energy-rate maximum lay within {:g} % of the rise "
-        "before "
-        "the force maximum, so its edge reached over the force peak into the collapse; the discrepancy "
-        "rule's "
-        "filter alone serves (docs/analysis.md, \"The smoothing floor withdrawn where it reaches into a "
-        "collapse\")",
+        "the smoothing floor was withdrawn: under it the energy-rate maximum did not lie at least {:g} % of "
+        "the rise before the force maximum (or one of them was not found), so its edge reached over the "
+        "force peak into the collapse; the discrepancy rule's filter alone serves (docs/analysis.md, \"The "
+        "smoothing floor withdrawn where it reaches into a collapse\")",
         100.0 * smoothing_floor_min_delay_share));
   }
   r.derivative_window = search.derivative_window;

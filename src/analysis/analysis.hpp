@@ -66,7 +66,7 @@ BreakLog select_breaks(const io::CsvTable& breaks, double scale = 1.0,
 struct AcceptanceRules {
   double min_prominence = 0.1;  // F and ℰ peaks must rise this fraction of their height above their bases
   double competing_maximum = 0.9;  // reject if another significant force maximum reaches this fraction of F_c
-  double max_relative_delay_sd = 0.25;  // reject if sd(δ_x) exceeds this fraction of x_c
+  double max_relative_delay_sd = 0.25;  // reject if δ_x's unscaled sd exceeds this fraction of x_c
   double max_failed_replicates =
       0.05;  // reject if a peak is lost in more than this share of noise replicates
   double collapse_fraction =
@@ -332,10 +332,12 @@ struct AnalysisResult {
   // filtered apart (docs/analysis.md, "A collapse the filter cannot follow").
   std::optional<double> collapse_onset;
   DelayMethod delay_method = DelayMethod::fitted_maxima;
-  // fitted_maxima: the replicates' sampling distribution centred on the estimate; shift_l1: the posterior.
+  // fitted_maxima: the replicates' sampling distribution centred on the estimate, widened by the 68 %
+  // factor as its sd is; shift_l1: the posterior.
   std::optional<DelayPosterior> delay;
   std::optional<Measured> delta_x, Gamma, A_r;  // δ_x: estimate ± sd
-  std::optional<Measured> delta_x_direct;       // x_c − x_p from the peak fits (= delta_x by default)
+  std::optional<Measured>
+      delta_x_direct;  // x_c − x_p from the peak fits (= delta_x by default), ± the bootstrap's own sd
   // The bootstrap's bias estimates (replicates' mean minus the data's value; half of each is
   // subtracted from its estimate).
   struct {

@@ -88,7 +88,7 @@ void print_numbers(const analysis::AnalysisResult& r, std::FILE* out) {
   };
   const double from = analysis::white_factors_checked_from, above = std::numeric_limits<double>::infinity();
   strain_line("x_c", r.x_c, r.x_c_interval);
-  if (r.x_c_interval)
+  if (r.x_c_interval && analysis::critical_strain_scales.white_noise.calibrated)
     print_level_note(out, r, "x_c", "F's white noise, share of F_c:", analysis::critical_noise_level(r), from,
                      above);
   line("F_c", r.F_c);

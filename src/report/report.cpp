@@ -309,7 +309,8 @@ std::string analysis_section(const json& analysis) {
   std::string html =
       "<h2>Analysis</h2>\n<p>From <code>analysis.json</code>; uncertainties are one standard "
       "deviation: for x<sub>p</sub>, x<sub>c</sub> and δ<sub>x</sub> the bootstrap's scaled as their 68 % "
-      "intervals are (half that interval's width), for the others the bootstrap's own.</p>\n";
+      "intervals are (half that interval's width where it is symmetric), for the others, δ<sub>x</sub> "
+      "(direct) among them, the bootstrap's own.</p>\n";
   html +=
       table({"quantity", "meaning", "value", "uncertainty", "unit"}, rows, {false, false, true, true, false});
   if (const auto& delta = analysis["delta_x"]; delta.is_object()) {

@@ -202,7 +202,8 @@ TEST(AnalyzeCurve, ForceAndEnergyWithDifferentNoiseKindsAreWarnedOf) {
 // twelve seeds: read across the collapse, the fall entered F's structure function as a walk of 1.3 %
 // of F_c a step and x_c's sd came out at 15 % of x_c. The noise is now read up to the onset: F's
 // white noise as it is on every seed, no walk on most (a third fit a small one, 0.3-0.4 % of F_c a
-// step, by chance), and x_c's sd a few percent of x_c at most, its interval holding the truth.
+// step, by chance), and x_c's sd (as reported: scaled by its interval's factor) a few percent of x_c at
+// most, its interval holding the truth.
 TEST(AnalyzeCurve, TheNoiseOfACurveCutByACollapseIsReadOnItsLoading) {
   using namespace calibration;
   const Shape s = weibull(3);
@@ -422,7 +423,7 @@ TEST(AnalyzeCurve, OnlyTheDatasMeasurementStepsPastTheFiltersEdge) {
       analyse_set_curve("held-out-22", 194, calibration::noise_groups()[2], "uniform [0.083,0.98]", 1000);
   ASSERT_TRUE(r.accepted) << r.rejection;
   EXPECT_EQ(r.smoothing_shift.x_p, 0.0);
-  EXPECT_LT(r.delay->sd, 0.06);
+  EXPECT_LT(r.delay->unscaled_sd, 0.06);  // what the acceptance rule reads
   EXPECT_NEAR(r.x_p->value, t.x_p, 0.01);
 }
 
@@ -630,6 +631,18 @@ TEST(AnalyzeCurve, TheStrainsIntervalsAreWrittenWithTheirNoiseKindsFactors) {
     EXPECT_NE(r.interval_scales.level68, 1.0);  // else the two lines below cannot tell scaled from own
     EXPECT_NEAR(r.delay->sd, r.interval_scales.level68 * bootstrap.delay->sd, 1e-12 * bootstrap.delay->sd);
     EXPECT_EQ(r.delay->unscaled_sd, bootstrap.delay->sd);
+    // The replicates' density drawn is widened as the sd was.
+    const auto density_sd = [](const DelayPosterior& d) {
+      double mass = 0.0, first = 0.0, second = 0.0;
+      for (std::size_t i = 0; i < d.delta.size(); ++i) {
+        mass += d.density[i];
+        first += d.density[i] * d.delta[i];
+        second += d.density[i] * d.delta[i] * d.delta[i];
+      }
+      return std::sqrt(second / mass - std::pow(first / mass, 2));
+    };
+    EXPECT_NEAR(density_sd(*r.delay) / density_sd(*bootstrap.delay), r.interval_scales.level68,
+                0.03 * r.interval_scales.level68);
     const auto j = to_json(r);
     EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], walk ? "random walk" : "white");
     EXPECT_EQ(j["x_p"]["ci95"][1].get<double>(), r.x_p_interval->ci95_high);
@@ -1261,7 +1274,8 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       // the factor times the own half-width on each side; the reported sd of each is the own sd times the
       // 68 % factor.
       EXPECT_NEAR(r.x_c->error, critical.level68 * bootstrap.x_c->error, 1e-12) << which;
-      EXPECT_NEAR(r.x_c_interval->ci68_high - r.x_c->value, critical.level68 * bootstrap.x_c->error, 1e-12)
+      EXPECT_NEAR(r.x_c_interval->ci95_high - r.x_c->value,
+                  std::max(1.96 * critical.level95, critical.level68) * bootstrap.x_c->error, 1e-12)
           << which;
       EXPECT_NEAR(r.delay->sd, delta.level68 * bootstrap.delay->sd, 1e-12) << which;
       EXPECT_NEAR(r.x_p_interval->ci95_high - r.x_p->value,
@@ -1431,7 +1445,10 @@ TEST(AnalyzeCurve, ARingingRunAtFineRowsIsSmoothedOverAQuarterOfItsRise) {
     const auto t = run_like_truth(curve_case.shape, curve_case.seed, group.run);
     const auto floored = analyze_curve(c, floor), rule = analyze_curve(c, rule_alone);
     EXPECT_FALSE(rule.smoothing_floor_applied);
-    if (floored.smoothing_floor_applied) ++floors_applied;  // elsewhere the rule smoothed harder
+    if (floored.smoothing_floor_applied) {  // elsewhere the rule smoothed harder
+      ++floors_applied;
+      EXPECT_TRUE(floored.collapse_onset) << k;  // kept on a cut record whose peaks lie apart
+    }
     if (floored.accepted) {
       EXPECT_GE(2.0 / floored.filter.cutoff, 0.2 * (floored.x_c->value - floored.x0) / floored.step) << k;
       ++floor_score.accepted;
