@@ -941,16 +941,20 @@ StrainInterval take_strain_interval(Measured& m, const IntervalScales& scales) {
 }
 
 // Marks the intervals of x_c, x_p and δ_x not calibrated, with a warning saying why where any of them
-// was: where the noise model read a ringing curve (ringing_read).
+// took learned factors (calibrated or kept from a failed check; not the bootstrap's own): where the
+// noise model read a ringing curve (ringing_read), or the smoothing floor acted.
 void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
-  bool was_calibrated = r.interval_scales.calibrated;
+  const auto learned = [](const IntervalScales& s) {
+    return s.calibrated || s.level68 != 1.0 || s.level95 != 1.0;
+  };
+  bool had_learned_factors = learned(r.interval_scales);
   for (auto* interval : {&r.x_c_interval, &r.x_p_interval}) {
     if (!*interval) continue;
-    was_calibrated = was_calibrated || (*interval)->scales.calibrated;
+    had_learned_factors = had_learned_factors || learned((*interval)->scales);
     (*interval)->scales.calibrated = false;
   }
   r.interval_scales.calibrated = false;
-  if (was_calibrated) r.warnings.push_back(std::move(why));
+  if (had_learned_factors) r.warnings.push_back(std::move(why));
 }
 
 // The warning of a record cut by a sharp collapse: where the collapse lies, and whether its intervals
