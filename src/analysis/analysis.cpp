@@ -770,6 +770,52 @@ std::optional<std::size_t> choose_filter_for_loading(const Grid& g, FilterSettin
   return onset;
 }
 
+// The peak search of step 4 and its measurement, under the filter step 2 chose.
+struct FilteredPeaks {
+  PeakSearch search;
+  PeakMeasurement measurement;
+};
+
+// 2-4 with the smoothing floor at `floor` (a share of the rise; 0: the discrepancy rule alone).
+FilteredPeaks filter_and_measure_at(const Grid& g, const AnalysisOptions& options, double floor,
+                                    AnalysisResult& r) {
+  FilterSettings filter = options.filter;
+  const auto onset = choose_filter_for_loading(g, filter, {options.random_walk_smoothing_share, floor},
+                                               options.acceptance.collapse_fraction, r);  // 2
+  // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
+  PeakSearch search{.filter = r.filter,
+                    .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
+                    .peak = options.peak,
+                    .collapse_fraction = options.acceptance.collapse_fraction,
+                    .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
+                    .collapse_onset = onset,
+                    .past_filter_edge = true,
+                    .force_peak_form = options.force_peak_form,
+                    .strain_unit = r.strain_unit};
+  auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
+  return {std::move(search), std::move(measurement)};
+}
+
+// 2-4 with the smoothing floor where asked for; where under it ℰ's maximum lies too close to F's before a
+// collapse (floor_reaches_into_collapse), again with the discrepancy rule's filter alone, warnings included.
+FilteredPeaks filter_and_measure(const Grid& g, const AnalysisOptions& options, AnalysisResult& r) {
+  const std::size_t curve_warnings = r.warnings.size();
+  auto peaks = filter_and_measure_at(g, options, options.smoothing_floor_share, r);
+  if (!r.smoothing_floor_applied || !floor_reaches_into_collapse(peaks.measurement, g.curves.x0))
+    return peaks;
+  r.warnings.resize(curve_warnings);
+  peaks = filter_and_measure_at(g, options, 0.0, r);
+  r.smoothing_floor_withdrawn = true;
+  r.warnings.push_back(fmt::format(
+      "the smoothing floor was withdrawn: under it the energy-rate maximum did not lie at least {:g} % of "
+      "the "
+      "rise before the force maximum (or one of them was not found), so its edge reached over the force peak "
+      "into the collapse; the discrepancy rule's filter alone serves (docs/analysis.md, \"The smoothing "
+      "floor withdrawn where it reaches into a collapse\")",
+      100.0 * smoothing_floor_min_delay_share));
+  return peaks;
+}
+
 // 4. The maxima found inside the loading phase, as values without errors: the bootstrap (step 6)
 // supplies the errors where all three peaks are found.
 void record_peaks(const PeakMeasurement& m, const Grid& g, AnalysisResult& r) {
@@ -1150,39 +1196,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
-  // 2-4, with the smoothing floor where asked for; where under it ℰ's maximum lies too close to F's
-  // before a collapse (floor_reaches_into_collapse), again with the discrepancy rule's filter alone.
-  const auto filter_and_measure = [&](double floor) {
-    FilterSettings filter = options.filter;
-    const auto onset = choose_filter_for_loading(g, filter, {options.random_walk_smoothing_share, floor},
-                                                 options.acceptance.collapse_fraction, r);  // 2
-    // 3. ℰ by the cubic Savitzky–Golay derivative; its window follows the filter's smoothing length.
-    PeakSearch search{
-        .filter = r.filter,
-        .derivative_window = derivative_window_for(r.filter, options.derivative_window, g.size()),
-        .peak = options.peak,
-        .collapse_fraction = options.acceptance.collapse_fraction,
-        .collapse_width = collapse_width(filtered_force_top(g.force(), r.filter).index),
-        .collapse_onset = onset,
-        .past_filter_edge = true,
-        .force_peak_form = options.force_peak_form,
-        .strain_unit = r.strain_unit};
-    auto measurement = measure_peaks(g.xs, g.force(), g.energy(), search);  // 4
-    return std::pair{std::move(search), std::move(measurement)};
-  };
-  const std::size_t curve_warnings = r.warnings.size();
-  auto [search, measurement] = filter_and_measure(options.smoothing_floor_share);
-  if (r.smoothing_floor_applied && floor_reaches_into_collapse(measurement, g.curves.x0)) {
-    r.warnings.resize(curve_warnings);  // the filter's reading is made again, warnings included
-    std::tie(search, measurement) = filter_and_measure(0.0);
-    r.smoothing_floor_withdrawn = true;
-    r.warnings.push_back(fmt::format(
-        "the smoothing floor was withdrawn: under it the energy-rate maximum did not lie at least {:g} % of "
-        "the rise before the force maximum (or one of them was not found), so its edge reached over the "
-        "force peak into the collapse; the discrepancy rule's filter alone serves (docs/analysis.md, \"The "
-        "smoothing floor withdrawn where it reaches into a collapse\")",
-        100.0 * smoothing_floor_min_delay_share));
-  }
+  const auto [search, measurement] = filter_and_measure(g, options, r);  // 2-4
   r.derivative_window = search.derivative_window;
   record_peaks(measurement, g, r);
   if (options.force_peak_form == PeakForm::corner && r.force_peak->found && !r.force_peak->corner)

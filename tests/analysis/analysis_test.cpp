@@ -1429,8 +1429,7 @@ TEST(AnalyzeCurve, TheForcePeakOfALoadingCutJustPastItIsNotPulledIntoTheCollapse
 TEST(AnalyzeCurve, ARingingRunAtFineRowsIsSmoothedOverAQuarterOfItsRise) {
   using namespace calibration;
   const auto set = calibration_set("tuning");
-  const NoiseGroup group = dem_like_noise_groups()[0];
-  ASSERT_EQ(group.name, "dem-like rows every 100 samples");
+  const NoiseGroup group = dem_like_group(100, false);
   AnalysisOptions floor, rule_alone;  // the default is the rule alone
   floor.smoothing_floor_share = 0.25;
   struct Score {
@@ -1473,8 +1472,7 @@ TEST(AnalyzeCurve, ARingingRunAtFineRowsIsSmoothedOverAQuarterOfItsRise) {
 TEST(AnalyzeCurve, TheSmoothingFloorIsWithdrawnWhereItReachesIntoACollapse) {
   using namespace calibration;
   const auto set = calibration_set("held-out-31");
-  const NoiseGroup group = dem_like_noise_groups()[5];
-  ASSERT_EQ(group.name, "dem-like rows every 400 means");
+  const NoiseGroup group = dem_like_group(400, true);
   AnalysisOptions floor;
   floor.smoothing_floor_share = 0.25;
   for (const int k : {1, 7}) {
@@ -1513,8 +1511,7 @@ TEST(AnalyzeCurve, TheSmoothingFloorIsWithdrawnWhereItReachesIntoACollapse) {
 TEST(AnalyzeCurve, AForceThatTurnsAtACornerKeepsX_cThereWithTheCornerForm) {
   using namespace calibration;
   const auto set = calibration_set("tuning");
-  const NoiseGroup group = dem_like_noise_groups()[3];
-  ASSERT_EQ(group.name, "dem-like rows every 200 means");
+  const NoiseGroup group = dem_like_group(200, true);
   AnalysisOptions corner;
   corner.force_peak_form = PeakForm::corner;
   double smooth_sum = 0.0, corner_sum = 0.0;

@@ -655,6 +655,14 @@ inline std::vector<NoiseGroup> dem_like_noise_groups() {
   return groups;
 }
 
+// The dem-like group of rows every `every` steps, as single samples or means, by its name.
+inline NoiseGroup dem_like_group(std::size_t every, bool means) {
+  const std::string name = "dem-like rows every " + std::to_string(every) + (means ? " means" : " samples");
+  for (const auto& g : dem_like_noise_groups())
+    if (g.name == name) return g;
+  throw std::invalid_argument("no dem-like group '" + name + "'");
+}
+
 inline double collapse_cut(const Shape& s, std::uint64_t seed, double from = 1.03, double span = 0.47) {
   Rng rng(seed, RandomStream::analysis_noise, 10);
   return (from + span * rng.uniform01()) * truth(s).x_c;

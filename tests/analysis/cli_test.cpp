@@ -85,7 +85,7 @@ TEST(AnalyzeCli, ACurveCutByACollapseGetsNoNoiseLevelNote) {
 TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
   using namespace calibration;
   TempDir dir;
-  const NoiseGroup group = dem_like_noise_groups()[3];
+  const NoiseGroup group = dem_like_group(200, true);
   const auto set = calibration_set("tuning");  // CalibrationCase refers to its shape
   const auto curve_case = CalibrationCase::at(set, 1);
   write_curve(dir / "curve.csv", curve_case.draw(group), "strain[1],force[1],elastic_energy[1]");
@@ -115,7 +115,7 @@ TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
 TEST(AnalyzeCli, SmoothingFloorIsRecordedAndStrengthensTheFilterWhereAskedFor) {
   using namespace calibration;
   TempDir dir;
-  const NoiseGroup group = dem_like_noise_groups()[0];
+  const NoiseGroup group = dem_like_group(100, false);
   const auto set = calibration_set("tuning");
   write_curve(dir / "curve.csv", CalibrationCase::at(set, 3).draw(group),
               "strain[1],force[1],elastic_energy[1]");
