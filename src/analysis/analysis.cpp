@@ -808,10 +808,9 @@ FilteredPeaks filter_and_measure(const Grid& g, const AnalysisOptions& options, 
   r.smoothing_floor_withdrawn = true;
   r.warnings.push_back(fmt::format(
       "the smoothing floor was withdrawn: under it the energy-rate maximum did not lie at least {:g} % of "
-      "the "
-      "rise before the force maximum (or one of them was not found), so its edge reached over the force peak "
-      "into the collapse; the discrepancy rule's filter alone serves (docs/analysis.md, \"The smoothing "
-      "floor withdrawn where it reaches into a collapse\")",
+      "the rise before the force maximum (or one of them was not found), so its edge reached over the "
+      "force peak into the collapse; the discrepancy rule's filter alone serves (docs/analysis.md, \"The "
+      "smoothing floor withdrawn where it reaches into a collapse\")",
       100.0 * smoothing_floor_min_delay_share));
   return peaks;
 }

@@ -212,9 +212,8 @@ void add_analyze_command(CLI::App& app, int& exit_code) {
          "--smoothing-floor", o->analysis.smoothing_floor_share,
          "Where the noise of F or E_e reads as white, the automatic filter averages over at least this "
          "share of the rows up to the force peak, where they are 100 or more (default 0: the noise alone "
-         "chooses; 0.25 mends DEM runs at rows every 100-200 steps, see docs/analysis.md); withdrawn where "
-         "it "
-         "would reach from the energy-rate peak over the force peak into a collapse")
+         "chooses; 0.25 mends DEM runs at rows every 100-200 steps, see docs/analysis.md); withdrawn "
+         "where it would reach from the energy-rate peak over the force peak into a collapse")
       ->check(CLI::Range(0.0, analysis::max_smoothing_floor_share));
   cmd->add_option("--max-samples", o->analysis.max_samples,
                   "Denser curves are averaged in blocks down to this many samples (0: never)");

@@ -171,7 +171,8 @@ void add_delay_panel(Figure& figure, const nlohmann::json& delta) {
                    .title = sampled ? "bootstrap replicates of δ_x" : "posterior p(δ_x | F, ℰ)"}};
   panel.markers = {{delta.at("map").get<double>(), sampled ? "δ_x" : "MAP"}};
   // The 95 % interval the analysis reports: with the fitted maxima the replicates' spread stretched by
-  // the interval factors, so it can be wider or narrower than the density drawn.
+  // the interval factors. The density drawn is widened by the 68 % factor only, so these ends can lie
+  // inside or outside its own tails.
   if (high > low) panel.markers.insert(panel.markers.end(), {{low, "95 %"}, {high, "95 %"}});
   figure.panels.push_back(std::move(panel));
   figure.height = 1100;
