@@ -10,7 +10,7 @@ Usage: per_curve_leads.py [DIR]   (DIR: bench/results/calibration, the default)
 2. Shape and sampling at low white noise: on the held-out 20-24 and 26 files at 0.06-0.14 % (curves
    scored as white), the 68.27 % quantile of δ_x's scores per law family and row count.
 3. White noise read as a walk at low noise: the curves of the white groups of held-outs 20-24's low
-   files scored as a walk, their shapes and rows, and δ_x's coverage with the walk's shipped factors.
+   files scored as a walk, their shapes and rows, and δ_x's coverage with the walk's factors of that day.
 Curves are scored as in bench/interval_scales.py (a curve quiet below 0.05 % of both peaks counts as
 a walk). Needs pandas.
 """
@@ -24,7 +24,7 @@ import pandas as pd
 HELD_OUT = ["held-out-20.csv", "held-out-21.csv", "held-out-22-edge.csv", "held-out-23.csv",
             "held-out-24-edge.csv", "held-out-25.csv"]
 LOW = [f"held-out-{n}-low.csv" for n in range(20, 25)]
-WALK_FACTORS = (1.0137, 1.1266)  # δ_x's shipped random-walk factors (analysis.hpp, delta_interval_scales)
+WALK_FACTORS = (1.0137, 1.1266)  # δ_x's random-walk factors when these leads were measured (held-out 22 to 34)
 
 
 def accepted(paths):
