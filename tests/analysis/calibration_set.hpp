@@ -268,9 +268,10 @@ inline const HeldOutSet later_held_out_sets[] = {
     // floor bounded by the peaks' distance"); run once for it.
     {"held-out-34", 2.82, -0.47, 0.064, 0.53, 0.322, 7.5, {"weibull mixture k=3.2 36/64 x1.5", 0.36, 3.2, 1.5, 2.7}},
     {"held-out-34", 1.79, -0.12, 0.073, 0.67, 0.321, 5.7, {"weibull mixture k=3.9 67/33 x1.4", 0.67, 3.9, 1.4, 2.3}},
-    // Twelve shapes drawn by bench/draw_held_out.py 35, fixed before the factors of x_c under white noise
-    // and of δ_x and x_p on a random walk were learned again on held-outs 29, 30 and 34 pooled
-    // (docs/analysis.md, "Three failed factors learned again, checked on held-out 35"); run once for them.
+    // Twelve shapes drawn by bench/draw_held_out.py 35, fixed before the factors of x_c under white noise,
+    // of δ_x and x_p on a random walk and x_p's white level model were learned again on held-outs 29 to 31
+    // and 34 (docs/analysis.md, "Four failed factors learned again on three or four sets pooled, checked on
+    // held-out 35"); run once for them.
     {"held-out-35", 2.71, 3.2, 0.04, 0.46, 0.206, 4.9, {"weibull mixture k=5.5 32/68 x1.5", 0.32, 5.5, 1.5, 2.1}},
     {"held-out-35", 4.65, 0.51, 0.13, 0.95, 0.578, 5.8, {"weibull mixture k=5.5 39/61 x1.4", 0.39, 5.5, 1.4, 2}},
 };

@@ -124,8 +124,8 @@ TEST(DelayCalibration, IntervalsCoverUnderWhiteNoiseBetweenTheTablesLevels) {
     ASSERT_TRUE(r.interval_scales.calibrated)
         << s.name << ": δ_x's white intervals at these levels are calibrated";
     // x_c's white factors and x_p's level model, learned again, passed held-out 35.
-    ASSERT_TRUE(r.x_c_interval->scales.calibrated) << s.name;
-    ASSERT_TRUE(r.x_p_interval->scales.calibrated) << s.name;
+    EXPECT_TRUE(r.x_c_interval->scales.calibrated) << s.name;
+    EXPECT_TRUE(r.x_p_interval->scales.calibrated) << s.name;
     delta.add(exact.delta(), d.ci68_low, d.ci68_high, d.ci95_low, d.ci95_high);
     x_c.add(exact.x_c, *r.x_c_interval);
     x_p.add(exact.x_p, *r.x_p_interval);
