@@ -10,9 +10,9 @@ Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p]
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
 stretched about the estimate to reach the truth. The scale of level L is the split-conformal
-quantile of the learning curves' scores, the ceil((n + 1) L)-th smallest of n, taken separately for
-each kind of noise the analysis tells apart (the `noise` column: white, random walk), as
-src/analysis/analysis.hpp applies them. The check files are then scored with those scales and never
+quantile of the learning curves' scores, the ceil((n + 1) L)-th smallest of n, rounded up to four
+digits, taken separately for each kind of noise the analysis tells apart (the `noise` column: white,
+random walk), as src/analysis/analysis.hpp ships and applies them (the check scores what ships). The check files are then scored with those scales and never
 used to choose them. `--use "random walk=1,0.6119"` scores with given factors for one kind instead of
 the learned ones (what src/analysis/analysis.hpp applies where a learned factor failed its check).
 `--skip-shape "uniform [0.3,0.8]"` leaves that shape's curves out of learning and checking alike (a
@@ -198,6 +198,12 @@ def conformal_scale(scores, level):
     return ordered[rank - 1]
 
 
+def rounded_up(scale):
+    """A learned scale as it ships: up to the next 1e-4 (widening, never narrowing, the interval). The
+    product is rounded to 1e-9 first so that a scale already on the grid (0.69) stays there."""
+    return math.ceil(round(scale * 1e4, 9)) / 1e4
+
+
 def learn_scales(rows):
     """{noise kind: {level: scale}} from the accepted rows of each kind; with --white-by-level the white
     kind's are {share: {level: scale}}, one anchor per white group."""
@@ -209,10 +215,11 @@ def learn_scales(rows):
             for r in accepted:
                 if white_level(r["group"]) is not None:
                     anchors.setdefault(white_level(r["group"]), []).append(r)
-            scales[kind] = {share: {lvl: conformal_scale([score(r, lvl) for r in members], p)
+            scales[kind] = {share: {lvl: rounded_up(conformal_scale([score(r, lvl) for r in members], p))
                                     for lvl, p in LEVELS} for share, members in anchors.items()}
         elif accepted:
-            scales[kind] = {lvl: conformal_scale([score(r, lvl) for r in accepted], p) for lvl, p in LEVELS}
+            scales[kind] = {lvl: rounded_up(conformal_scale([score(r, lvl) for r in accepted], p))
+                            for lvl, p in LEVELS}
     return scales
 
 

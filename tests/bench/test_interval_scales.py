@@ -47,6 +47,9 @@ def test_the_learned_scale_is_the_split_conformal_quantile():
     # ceil((n + 1) L)-th smallest of n = 100: the 69th (0.69) at 68.27 %, the 96th (0.96) at 95 %.
     assert abs(scales["68"] - 0.69) < 1e-12
     assert abs(scales["95"] - 0.96) < 1e-12
+    # Off the 1e-4 grid the scale is rounded up, as it ships (src/analysis/analysis.hpp): never narrower.
+    off_grid = module.learn_scales(rows_with_scores([0.12341] * 10, [0.12341] * 10))["random walk"]
+    assert off_grid["68"] == 0.1235 and off_grid["95"] == 0.1235
 
 
 def test_the_rule_passes_nominal_coverage_and_names_what_fails(tmp_path, capsys):
