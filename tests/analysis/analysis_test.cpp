@@ -1078,7 +1078,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-33").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-34").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-35").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-36").empty());
+  EXPECT_EQ(calibration_set("held-out-36").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-37").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
