@@ -1017,11 +1017,10 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
       cut_factors
           ? fmt::format(
                 "the intervals of x_c, x_p{} take the factors of such curves by how close the collapse "
-                "comes (near: less than {:g} % of x_c after it), calibrated only for x_p under a walk with "
-                "a far collapse: on curves with known answers (held-out 32) delta_x's 68 % interval "
-                "covered 64-72 % of them by noise kind and closeness (82 % under white noise with a far "
-                "collapse, which keeps the bootstrap's own), but 42 % of finite bundles cut within 2 % "
-                "past their peak and 55 % of run-like means far from it",
+                "comes (near: less than {:g} % of x_c after it), not calibrated: on curves with known "
+                "answers (held-out 36) delta_x's 68 % interval covered 68-71 % of them by noise kind and "
+                "closeness, but 35 % of finite bundles cut within 2 % past their peak and 56-57 % of "
+                "run-like means far from it",
                 delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness)
           : fmt::format(
                 "the intervals of x_c, x_p{} are the bootstrap's own, not calibrated (the factors of "
@@ -1036,9 +1035,9 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
 }
 
 // The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose factors,
-// where `cut_factors` says they were applied, follow its closeness and, but for x_p's far walk cell,
-// failed their check: collapse_delta_scales), a noise model that read a ringing curve, and a filter the
-// smoothing floor strengthened (its factors were learned without it).
+// where `cut_factors` says they were applied, follow its closeness and failed their check:
+// collapse_delta_scales), a noise model that read a ringing curve, and a filter the smoothing floor
+// strengthened (its factors were learned without it).
 void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
   if (r.smoothing_floor_applied)
     mark_intervals_uncalibrated(
