@@ -1294,6 +1294,9 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
           << which;
       EXPECT_TRUE(warns(r, near ? "x_c after x_c: near" : "x_c after x_c: far")) << which;
       EXPECT_TRUE(warns(r, "take the factors of such curves")) << which;
+      EXPECT_TRUE(
+          warns(r, "how close the collapse comes (near: less than 10 % of x_c after it), not calibrated"))
+          << which;
       EXPECT_TRUE(warns(bootstrap, "are the bootstrap's own, not calibrated")) << which;
       // The corner form keeps the bootstrap's own; a stationary walk step does on a walk only (a white
       // curve's intervals do not use the walk's step).
