@@ -66,6 +66,49 @@ def test_the_rule_passes_nominal_coverage_and_names_what_fails(tmp_path, capsys)
     assert "| random walk | 200 | 68.0 % | 95.0 % |" in passed and passed.rstrip().endswith("passes |")
 
 
+def test_small_groups_are_scored_together_only_when_asked(capsys):
+    module = load()
+    # 200 curves covered at 68 % / 95 % with factors 1.365 / 1.905 (nominal, as above), beside two groups
+    # of 3 whose curves each need 1.5 at 95 %: one miss in 3 fails a group alone.
+    scores = [0.01 * (i + 1) for i in range(200)]
+    rows = rows_with_scores(scores, scores)
+    for group in ("run-like a", "run-like b"):
+        rows += rows_with_scores([0.1, 0.1, 2.0], [0.1, 0.1, 2.0], group=group)
+    factors = {"random walk": {"68": 1.365, "95": 1.905}}
+    module.verdict(rows, factors)
+    alone = capsys.readouterr().out
+    assert "run-like a: 2 of 3 at 95 %, 3 needed" in alone and "fails" in alone
+    try:
+        module.POOL_GROUPS_BELOW = 20
+        module.verdict(rows, factors)
+    finally:
+        module.POOL_GROUPS_BELOW = 0
+    pooled = capsys.readouterr().out
+    # Together the six are 4 of 6 at 95 %, below 95 % - 2 sd (77.2 % of 6: 5 needed), so the pooled group
+    # fails too, but as one group under its own name.
+    assert "run-like a:" not in pooled
+    assert "groups under 20 curves (2): 4 of 6 at 95 %, 5 needed" in pooled
+
+
+def test_pooled_checks_score_several_files_as_one_set(tmp_path):
+    scores = [0.01 * (i + 1) for i in range(200)]
+    learn = write(tmp_path / "learn.csv", rows_with_scores(scores, scores))
+    first = write(tmp_path / "a.csv", rows_with_scores(scores[:100], scores[:100], group="a"))
+    second = write(tmp_path / "b.csv", rows_with_scores(scores[100:], scores[100:], group="b"))
+    apart = run(learn, "--check", first, second)
+    together = run(learn, "--pool-checks", "--check", first, second)
+    assert apart.returncode == 0 and together.returncode == 0
+    assert apart.stdout.count("| noise | accepted |") == 2
+    assert together.stdout.count("| noise | accepted |") == 1
+    assert f"Check: {first}, {second}" in together.stdout
+    # Apart, the low half is all covered and the high half mostly missed; together they are the learning
+    # set itself, covered as learned (the 137th and 191st smallest of 200 scores).
+    assert "b: 38 of 100 at 68 %, 59 needed" in apart.stdout
+    assert "| random walk | 200 | 69.0 % | 95.0 % |" in together.stdout
+    assert run(learn, "--pool-groups-below", "0").returncode != 0
+    assert "positive whole number of curves" in run(learn, "--pool-groups-below", "x").stderr
+
+
 def test_a_factor_for_a_kind_of_noise_the_files_do_not_have_is_refused(tmp_path):
     learn = write(tmp_path / "learn.csv", rows_with_scores([0.5] * 10, [0.5] * 10))
     result = run(learn, "--use", "white noise=1,1")
