@@ -500,6 +500,7 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
           : run.high;
   run.noise = estimate_noise(force, energy, run.low, run.noise_high, OutlierScale::local);
   if (options.walk_profile) add_walk_profiles(run.noise, xs, force, run.low, run.noise_high);
+  add_hidden_force_walk(run.noise, xs, force, energy, run.low, run.noise_high);
   const auto window_x = xs.subspan(run.low, count);
   PeakSearch replicate_search = search;
   replicate_search.past_filter_edge = false;
@@ -1052,12 +1053,14 @@ void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
     const auto& e = r.noise_model.energy;
     mark_intervals_uncalibrated(
         r, fmt::format("{} rings (its structure function falls with the lag, as a run's force does when rows "
-                       "come faster than its slowest mode): its walk was read on means of {} rows; the "
-                       "intervals of x_c, x_p and delta_x are not calibrated there (docs/analysis.md, "
-                       "\"What F's ringing does to the noise model\"; rows averaged over at least the "
-                       "ringing's period avoid it)",
+                       "come faster than its slowest mode): {}; the intervals of x_c, x_p and delta_x are "
+                       "not calibrated there (docs/analysis.md, \"What F's ringing does to the noise "
+                       "model\"; rows averaged over at least the ringing's period avoid it)",
                        f.ringing_block > 0 ? "F" : "E_e",
-                       f.ringing_block > 0 ? f.ringing_block : e.ringing_block));
+                       f.walk_from_energy
+                           ? std::string("its walk was taken from E_e's, each step F/E_e times E_e's")
+                           : fmt::format("its walk was read on means of {} rows",
+                                         f.ringing_block > 0 ? f.ringing_block : e.ringing_block)));
   }
 }
 

@@ -251,6 +251,28 @@ void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::s
                                   : std::vector<double>{};
 }
 
+void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
+                           std::span<const double> energy, std::size_t low, std::size_t high) {
+  assert(strain.size() == force.size() && force.size() == energy.size());
+  high = std::min(high, force.size() - 1);
+  if (model.force.ringing_block == 0 || model.energy.ringing_block != 0 || !(model.energy.walk > 0.0)) return;
+  const auto& energy_profile = model.energy.walk_profile;
+  double squares = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t i = low; i <= high; ++i) {
+    if (!(energy[i] > 0.0)) continue;
+    const double relative = i - low < energy_profile.size() ? energy_profile[i - low] : 1.0;
+    const double step = relative * force[i] / energy[i];
+    squares += step * step;
+    ++counted;
+  }
+  if (counted == 0) return;
+  model.force.walk = model.energy.walk * std::sqrt(squares / static_cast<double>(counted));
+  model.force.walk_from_energy = true;
+  model.force.walk_profile =
+      energy_profile.empty() ? std::vector<double>{} : damage_profile(strain, force, low, high, 1);
+}
+
 void add_model_noise(const NoiseModel& model, std::span<double> force, std::span<double> energy,
                      std::uint64_t seed, std::uint64_t replicate) {
   assert(force.size() == energy.size());

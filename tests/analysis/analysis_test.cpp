@@ -818,6 +818,57 @@ TEST(NoiseModel, WalkProfileFollowsABundlesBreaks) {
   EXPECT_TRUE(white.force.walk_profile.empty());
 }
 
+// A finite bundle whose F rings (power law α = 1, 10^5 fibres, 500 rows; a 3.3-row ringing at 20
+// times F's true walk step): the breaks that make E_e's walk make F's, each of F's steps F/E_e = 2/x
+// times E_e's (Clapeyron). The walk read on F's block means is lost under the ringing (seed 1: 0) or
+// takes a part of it for a walk (seed 4: twice the true step); add_hidden_force_walk takes F's walk
+// from E_e's, within 20 % of its true rms step over the span (x² p(x) h / N per row, p(x) = 2x, h the
+// row's strain), with a breaking solid's profile. Where F does not ring, or E_e rings too, F's reading
+// stands.
+TEST(NoiseModel, AWalkHiddenUnderFsRingingIsTakenFromEnergysWalk) {
+  const std::size_t n = 500, low = 75, high = 425, fibers = 100000;
+  for (const std::uint64_t seed : {1, 4}) {
+    const auto bundle = testing::finite_bundle(1.0, fibers, n, seed);
+    const double h = bundle.strain[1] - bundle.strain[0];
+    double true_square = 0.0;
+    for (std::size_t i = low; i <= high; ++i)
+      true_square += std::pow(bundle.strain[i], 3) * 2.0 * h / double(fibers) / double(high - low + 1);
+    const double true_step = std::sqrt(true_square);
+    const calibration::StepOscillator mode(3.3);
+    Rng rng(seed + 8, RandomStream::analysis_noise);
+    std::vector<double> ringing(n, 0.0);
+    for (std::size_t i = 2; i < n; ++i) mode.step(ringing, i, rng.normal());
+    double square = 0.0;
+    for (double r : ringing) square += r * r / double(n);
+    auto ringing_force = bundle.force, ringing_energy = bundle.energy;
+    for (std::size_t i = 0; i < n; ++i) {
+      ringing_force[i] += 20.0 * true_step * ringing[i] / std::sqrt(square);
+      ringing_energy[i] += 20.0 * true_step * ringing[i] / std::sqrt(square);
+    }
+    auto model = estimate_noise(ringing_force, bundle.energy, low, high);
+    ASSERT_GE(model.force.ringing_block, 2u);
+    ASSERT_EQ(model.energy.ringing_block, 0u);
+    add_walk_profiles(model, bundle.strain, ringing_force, low, high);
+    const double read = model.force.walk;
+    EXPECT_GT(std::abs(read / true_step - 1.0), 0.3) << "seed " << seed;
+    add_hidden_force_walk(model, bundle.strain, ringing_force, bundle.energy, low, high);
+    EXPECT_NEAR(model.force.walk, true_step, 0.2 * true_step) << "seed " << seed << ", read " << read;
+    EXPECT_EQ(model.force.walk_profile.size(), high - low + 1);
+    // F without its ringing: its own reading stands.
+    auto plain = estimate_noise(bundle.force, bundle.energy, low, high);
+    add_walk_profiles(plain, bundle.strain, bundle.force, low, high);
+    const auto plain_walk = plain.force.walk;
+    add_hidden_force_walk(plain, bundle.strain, bundle.force, bundle.energy, low, high);
+    EXPECT_EQ(plain.force.walk, plain_walk);
+    // E_e ringing as well: no step of E_e to take F's from.
+    auto both = estimate_noise(ringing_force, ringing_energy, low, high);
+    ASSERT_GE(both.energy.ringing_block, 2u);
+    const auto both_walk = both.force.walk;
+    add_hidden_force_walk(both, bundle.strain, ringing_force, ringing_energy, low, high);
+    EXPECT_EQ(both.force.walk, both_walk);
+  }
+}
+
 // A bundle with a sharp force peak (α = 4, 300 rows; held-out 7's curve 1 at 10^5 fibers): over the
 // whole curve the collapse inflates the white term and the model reads white noise (the known limit
 // "a finite bundle read as white noise"), while in at least 2 of its 4 quarters the walk dominates.
@@ -1618,10 +1669,15 @@ TEST(AnalyzeCurve, ARingingForceIsReadOnBlockMeansAndItsIntervalsAreNotCalibrate
   ASSERT_TRUE(r.accepted) << r.rejection;
   EXPECT_TRUE(ringing_read(r));
   EXPECT_GE(r.noise_model.force.ringing_block, 2u);
+  // E_e carries the bundle's walk without ringing: F's walk is taken from it.
+  EXPECT_EQ(r.noise_model.energy.ringing_block, 0u);
+  EXPECT_TRUE(r.noise_model.force.walk_from_energy);
+  EXPECT_GT(r.noise_model.force.walk, 0.0);
   EXPECT_FALSE(r.x_c_interval->scales.calibrated);
   EXPECT_FALSE(r.x_p_interval->scales.calibrated);
   EXPECT_FALSE(r.interval_scales.calibrated);
   EXPECT_TRUE(warns(r, "rings"));
+  EXPECT_TRUE(warns(r, "taken from E_e's"));
 }
 
 // Replicates that all agree (a bootstrap window read as noise-free) still leave the bias's half as

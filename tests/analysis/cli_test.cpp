@@ -101,6 +101,11 @@ TEST(AnalyzeCli, ForcePeakFormCornerIsRecordedAndMovesX_cOntoTheCorner) {
   EXPECT_EQ(s["inputs"]["force_peak_form"], "smooth");
   EXPECT_EQ(c["inputs"]["force_peak_form"], "corner");
   EXPECT_EQ(s["peak_fits"]["force"]["form"], "cubic");
+  // Its F rings and E_e does not: F's walk step was taken from E_e's, and the file says so.
+  const auto& noise = s["uncertainty"]["noise"];
+  EXPECT_GE(noise["force"]["ringing_block"]["value"].get<double>(), 2.0);
+  EXPECT_TRUE(noise["force"]["walk_from_energy"].get<bool>());
+  EXPECT_FALSE(noise["elastic_energy"]["walk_from_energy"].get<bool>());
   EXPECT_EQ(c["peak_fits"]["force"]["form"], "corner");
   EXPECT_LT(s["x_c"]["value"].get<double>(), x_c - 0.01 * x_c);
   EXPECT_NEAR(c["x_c"]["value"].get<double>(), x_c, 0.005 * x_c);
