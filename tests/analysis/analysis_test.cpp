@@ -1130,7 +1130,8 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-34").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-35").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-36").size(), 12u);
-  EXPECT_TRUE(calibration_set("held-out-37").empty());
+  EXPECT_EQ(calibration_set("held-out-37").size(), 12u);
+  EXPECT_TRUE(calibration_set("held-out-38").empty());
   EXPECT_TRUE(calibration_set("").empty());
 }
 
