@@ -214,7 +214,8 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
 // where it leaves room, so their factors follow the collapse's closeness, the onset over x_c minus 1
 // (collapse_closeness): near below collapse_near_closeness, far from it on, per noise kind
 // (scored_as_random_walk). Split-conformal on the brittle, brittle-close, dem-like and run-like groups
-// of held-outs 32-34 run at this code (9,916 curves with a collapse; bench/interval_scales.py
+// of held-outs 32-34 run at this code, F's walk taken from E_e's where F rings (add_hidden_force_walk;
+// 9,907 curves with a collapse; bench/interval_scales.py
 // --collapse-closeness 0.1), rounded up to four digits, learned under the default peak form and, on a
 // walk, the walk's step profile (under others the bootstrap's own), white ones not calibrated below
 // white_factors_checked_from. Checked once on held-out 36 (3,284 such curves; docs/analysis.md, "The
@@ -236,18 +237,18 @@ struct CollapseIntervalScales {
 };
 inline constexpr double collapse_near_closeness = 0.1;
 constexpr bool is_near_collapse(double closeness) { return closeness < collapse_near_closeness; }
-inline constexpr CollapseIntervalScales collapse_delta_scales{.white_near = {1.3902, 1.9290, false},
-                                                              .white_far = {0.6962, 0.7782, false},
-                                                              .walk_near = {1.7486, 2.4644, false},
-                                                              .walk_far = {1.2426, 1.4332, false}};
-inline constexpr CollapseIntervalScales collapse_critical_scales{.white_near = {1.7711, 1.3641, false},
-                                                                 .white_far = {0.7195, 0.8201, false},
-                                                                 .walk_near = {1.3727, 1.4911, false},
-                                                                 .walk_far = {1.2605, 1.8885, false}};
-inline constexpr CollapseIntervalScales collapse_precursor_scales{.white_near = {0.7605, 0.8707, false},
-                                                                  .white_far = {0.7106, 0.8123, false},
-                                                                  .walk_near = {1.1688, 1.4632, false},
-                                                                  .walk_far = {1.1109, 1.3314, false}};
+inline constexpr CollapseIntervalScales collapse_delta_scales{.white_near = {1.3854, 1.8110, false},
+                                                              .white_far = {0.6893, 0.7666, false},
+                                                              .walk_near = {1.6576, 2.4011, false},
+                                                              .walk_far = {1.0520, 1.1578, false}};
+inline constexpr CollapseIntervalScales collapse_critical_scales{.white_near = {1.7711, 1.3642, false},
+                                                                 .white_far = {0.7078, 0.8112, false},
+                                                                 .walk_near = {1.3209, 1.4433, false},
+                                                                 .walk_far = {0.7839, 1.1527, false}};
+inline constexpr CollapseIntervalScales collapse_precursor_scales{.white_near = {0.7510, 0.8445, false},
+                                                                  .white_far = {0.7077, 0.8124, false},
+                                                                  .walk_near = {1.1542, 1.4585, false},
+                                                                  .walk_far = {1.0879, 1.3072, false}};
 
 // White-noise factors that follow the curve's measured white noise in E_e, ν (the noise model's
 // white term in the bootstrap window over E_max): each level's factor interpolated linearly in log ν
