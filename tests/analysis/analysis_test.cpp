@@ -203,12 +203,14 @@ TEST(AnalyzeCurve, ForceAndEnergyWithDifferentNoiseKindsAreWarnedOf) {
 // of F_c a step and x_c's sd came out at 15 % of x_c. The noise is now read up to the onset: F's
 // white noise as it is on every seed, no walk on most (a third fit a small one, 0.3-0.4 % of F_c a
 // step, by chance), and x_c's sd (as reported: scaled by its interval's factor) a few percent of x_c at
-// most, its interval holding the truth.
+// most, its 95 % interval holding the truth on at least 10 of the 12 seeds (at exactly 95 % coverage
+// fewer happens 2 % of the time; every seed within 2.5 sd, as asked before, 14 %) and no seed beyond 4
+// sd.
 TEST(AnalyzeCurve, TheNoiseOfACurveCutByACollapseIsReadOnItsLoading) {
   using namespace calibration;
   const Shape s = weibull(3);
   const Truth t = truth(s);
-  int without_walk = 0;
+  int without_walk = 0, held = 0;
   std::vector<double> x_c_sd;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     Curve c = white_noise_curve(s, 1000, 0.002, seed);
@@ -222,9 +224,11 @@ TEST(AnalyzeCurve, TheNoiseOfACurveCutByACollapseIsReadOnItsLoading) {
     EXPECT_NEAR(r.noise_model.force.white, 0.02 * t.F_c, 0.003 * t.F_c) << seed;
     if (r.noise_model.force.walk == 0.0) ++without_walk;
     EXPECT_LT(r.x_c->error, 0.06 * t.x_c) << seed;
-    EXPECT_NEAR(r.x_c->value, t.x_c, 2.5 * r.x_c->error) << seed;
+    EXPECT_NEAR(r.x_c->value, t.x_c, 4.0 * r.x_c->error) << seed;
+    if (r.x_c_interval->ci95_low <= t.x_c && t.x_c <= r.x_c_interval->ci95_high) ++held;
     x_c_sd.push_back(r.x_c->error);
   }
+  EXPECT_GE(held, 10);
   EXPECT_GE(without_walk, 8);
   std::nth_element(x_c_sd.begin(), x_c_sd.begin() + 6, x_c_sd.end());
   EXPECT_LT(x_c_sd[6], 0.015 * t.x_c);
@@ -1325,10 +1329,12 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_EQ(r.interval_scales.level95, delta.level95) << which;
       EXPECT_EQ(r.x_c_interval->scales.level68, critical.level68) << which;
       EXPECT_EQ(r.x_p_interval->scales.level95, precursor.level95) << which;
-      // No cell passed held-out 36, so none says it is calibrated.
-      EXPECT_FALSE(r.x_p_interval->scales.calibrated || r.x_c_interval->scales.calibrated ||
-                   r.interval_scales.calibrated)
-          << which;
+      // Held-out 37 calibrated the three white far cells only.
+      const bool calibrated_cell = !walk && !near;
+      EXPECT_EQ(delta.calibrated && critical.calibrated && precursor.calibrated, calibrated_cell) << which;
+      EXPECT_EQ(r.x_p_interval->scales.calibrated, calibrated_cell) << which;
+      EXPECT_EQ(r.x_c_interval->scales.calibrated, calibrated_cell) << which;
+      EXPECT_EQ(r.interval_scales.calibrated, calibrated_cell) << which;
       // The same bootstrap, stretched: x_c's and x_p's half-widths are the factor times the own sd, δ_x's
       // the factor times the own half-width on each side; the reported sd of each is the own sd times the
       // 68 % factor.
@@ -1346,8 +1352,11 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
           << which;
       EXPECT_TRUE(warns(r, near ? "x_c after x_c: near" : "x_c after x_c: far")) << which;
       EXPECT_TRUE(warns(r, "take the factors of such curves")) << which;
-      EXPECT_TRUE(
-          warns(r, "how close the collapse comes (near: less than 10 % of x_c after it), not calibrated"))
+      EXPECT_TRUE(warns(r, calibrated_cell
+                               ? "how close the collapse comes (near: less than 10 % of x_c after it), "
+                                 "calibrated (held-out 37"
+                               : "how close the collapse comes (near: less than 10 % of x_c after it), not "
+                                 "calibrated"))
           << which;
       EXPECT_TRUE(warns(bootstrap, "are the bootstrap's own, not calibrated")) << which;
       // The corner form keeps the bootstrap's own; a stationary walk step does on a walk only (a white
@@ -1357,7 +1366,7 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
         ASSERT_TRUE(other.accepted) << which << ": " << other.rejection;
         EXPECT_EQ(other.interval_scales.level68, kept ? 1.0 : delta.level68) << which;
         EXPECT_EQ(other.x_c_interval->scales.level68, kept ? 1.0 : critical.level68) << which;
-        EXPECT_FALSE(other.x_p_interval->scales.calibrated) << which;
+        EXPECT_EQ(other.x_p_interval->scales.calibrated, !kept && calibrated_cell) << which;
         EXPECT_EQ(warns(other, "are the bootstrap's own, not calibrated"), kept) << which;
       }
     }
