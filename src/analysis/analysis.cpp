@@ -1022,16 +1022,25 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
   sort("x_c", r.x_c_interval && r.x_c_interval->scales.calibrated);
   sort("x_p", r.x_p_interval && r.x_p_interval->scales.calibrated);
   if (delta_scaled) sort("delta_x", r.interval_scales.calibrated);
+  // Whether the curve's cell passed its check (δ_x's, x_c's and x_p's white far cells passed together).
+  const bool cell_passed =
+      closeness &&
+      collapse_delta_scales.for_curve(scored_as_random_walk(r), is_near_collapse(*closeness)).calibrated;
   const std::string status =
-      not_calibrated.empty()
-          ? std::string("calibrated (held-out 37: 67-70 % at 68 % and 95-96 % at 95 % in this cell)")
-      : calibrated.empty()
+      not_calibrated.empty() ? std::string(
+                                   "calibrated (held-out 37: 67-70 % at 68 % and 95-96 % at 95 % in "
+                                   "this cell)")
+      : !calibrated.empty() ? fmt::format("calibrated for {}, not for {}", fmt::join(calibrated, " and "),
+                                          fmt::join(not_calibrated, " and "))
+      : cell_passed
           ? std::string(
+                "not calibrated here, although this cell passed held-out 37: another warning says why "
+                "(a ringing, the smoothing floor), or the curve's white noise lies below the level "
+                "from which the white factors were checked")
+          : std::string(
                 "not calibrated: on curves with known answers (held-out 37) delta_x's 68 % interval covered "
                 "67-69 % of them by noise kind and closeness, but 31 % of finite bundles cut within 2 % past "
-                "their peak and 53-54 % of run-like means every 100 and 400 steps with a far collapse")
-          : fmt::format("calibrated for {}, not for {}", fmt::join(calibrated, " and "),
-                        fmt::join(not_calibrated, " and "));
+                "their peak and 53-54 % of run-like means every 100 and 400 steps with a far collapse");
   const std::string intervals =
       cut_factors
           ? fmt::format(
@@ -1050,10 +1059,11 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
       *r.collapse_onset, r.strain_unit, where, intervals);
 }
 
-// The cases whose intervals no check has calibrated: a record cut by a sharp collapse (whose factors,
-// where `cut_factors` says they were applied, follow its closeness and failed their check:
-// collapse_delta_scales), a noise model that read a ringing curve, and a filter the smoothing floor
-// strengthened (its factors were learned without it).
+// The cases whose intervals no check has calibrated: a noise model that read a ringing curve, a filter
+// the smoothing floor strengthened (its factors were learned without it), and, said last so that it can
+// name what the others left calibrated, a record cut by a sharp collapse (whose factors, where
+// `cut_factors` says they were applied, follow its closeness; calibrated in the cells that passed their
+// check: collapse_delta_scales).
 void mark_unchecked_cases(AnalysisResult& r, bool cut_factors) {
   if (r.smoothing_floor_applied)
     mark_intervals_uncalibrated(

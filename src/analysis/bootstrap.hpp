@@ -92,14 +92,16 @@ void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::s
 
 // Where F rings (NoiseComponents::ringing_block), the walk read on its block means is lost under
 // the ringing (0 on about half of the run-like known answers cut by a collapse) or takes a part of it
-// for a walk (up to 3 times the true step), and the replicates' walk in F, the noise that survives
-// the filter and moves x_c, is wrong by as much. The breaks that make E_e's walk make F's: for a
-// linear elastic solid held at a displacement, E_e = F u / 2 before and after each break
-// (Clapeyron), so each of F's steps is F/E_e times E_e's. Where F rings and E_e does not, F's walk is
-// taken from E_e's: its step times F/E_e (raw values over [low, high], weighted by E_e's walk
+// for a walk (up to 2.4 times the true step on a test bundle), and the replicates' walk in F, the
+// noise that survives the filter and moves x_c, is wrong by as much. The breaks that make E_e's walk
+// make F's: for a linear elastic solid held at a displacement, E_e = F u / 2 before and after each
+// break (Clapeyron), so each of F's steps is F/E_e times E_e's. Where F rings and E_e does not, F's
+// walk is taken from E_e's: its step times F/E_e (raw values over [low, high], weighted by E_e's walk
 // profile where it has one), in rms over the span, with a breaking solid's profile for F
 // (add_walk_profiles) where E_e has one. The correlation of the two walks stays the model's one
-// correlation. Call after add_walk_profiles.
+// correlation. Too large where the span starts near zero strain or E_e has no profile (F/E_e = 2/x;
+// docs/analysis.md, "F's walk taken from E_e's where F rings", found in review). Call after
+// add_walk_profiles.
 void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
                            std::span<const double> energy, std::size_t low, std::size_t high);
 

@@ -233,14 +233,7 @@ bool interval_calibrated(const json& delta) {
 std::string uncalibrated_because(const json& analysis) {
   const auto& delta = analysis["delta_x"];
   if (interval_calibrated(delta)) return "";
-  // A collapse first: on such a curve δ_x's factors are calibrated at no noise level.
-  if (const auto onset = analysis.find("collapse_onset"); onset != analysis.end() && onset->is_object()) {
-    return fmt::format(
-        "; its intervals are not calibrated: the curve ends in a collapse too sharp for the filter (from "
-        "{} {}), filtered apart from the loading, where delta_x's intervals are calibrated at no noise "
-        "level (docs/analysis.md)",
-        number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")));
-  }
+  // The level first: below it no factor is calibrated, with a collapse or without.
   const auto& scales = delta.value("interval_scales", json::object());
   const double level = scales.value("white_share", std::numeric_limits<double>::quiet_NaN());
   if (level < analysis::white_factors_checked_from) {
@@ -249,6 +242,13 @@ std::string uncalibrated_because(const json& analysis) {
         "% "
         "from which the white factors were checked (docs/analysis.md)",
         number_text(100.0 * level), 100.0 * analysis::white_factors_checked_from);
+  }
+  if (const auto onset = analysis.find("collapse_onset"); onset != analysis.end() && onset->is_object()) {
+    return fmt::format(
+        "; its intervals are not calibrated: the curve ends in a collapse too sharp for the filter (from "
+        "{} {}), filtered apart from the loading, where delta_x's intervals are calibrated only on white "
+        "noise with the collapse 10 % of x_c or more past the force peak (docs/analysis.md)",
+        number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")));
   }
   return "; its intervals are not calibrated";
 }

@@ -857,19 +857,30 @@ TEST(NoiseModel, AWalkHiddenUnderFsRingingIsTakenFromEnergysWalk) {
     EXPECT_GT(std::abs(read / true_step - 1.0), 0.3) << "seed " << seed;
     add_hidden_force_walk(model, bundle.strain, ringing_force, bundle.energy, low, high);
     EXPECT_NEAR(model.force.walk, true_step, 0.2 * true_step) << "seed " << seed << ", read " << read;
-    EXPECT_EQ(model.force.walk_profile.size(), high - low + 1);
+    EXPECT_TRUE(model.force.walk_from_energy);
+    // F's profile, a breaking solid's: step² ∝ x³ here (E_e's would grow as x⁵).
+    ASSERT_EQ(model.force.walk_profile.size(), high - low + 1);
+    double true_profile_square = 0.0;
+    for (std::size_t i = low; i <= high; ++i)
+      true_profile_square += std::pow(bundle.strain[i], 3) / double(high - low + 1);
+    for (std::size_t i : {std::size_t{150}, n / 2, high - 25}) {
+      const double truth = std::sqrt(std::pow(bundle.strain[i], 3) / true_profile_square);
+      EXPECT_NEAR(model.force.walk_profile[i - low], truth, 0.2 * truth) << "seed " << seed << ", row " << i;
+    }
     // F without its ringing: its own reading stands.
     auto plain = estimate_noise(bundle.force, bundle.energy, low, high);
     add_walk_profiles(plain, bundle.strain, bundle.force, low, high);
     const auto plain_walk = plain.force.walk;
     add_hidden_force_walk(plain, bundle.strain, bundle.force, bundle.energy, low, high);
     EXPECT_EQ(plain.force.walk, plain_walk);
+    EXPECT_FALSE(plain.force.walk_from_energy);
     // E_e ringing as well: no step of E_e to take F's from.
     auto both = estimate_noise(ringing_force, ringing_energy, low, high);
     ASSERT_GE(both.energy.ringing_block, 2u);
     const auto both_walk = both.force.walk;
     add_hidden_force_walk(both, bundle.strain, ringing_force, ringing_energy, low, high);
     EXPECT_EQ(both.force.walk, both_walk);
+    EXPECT_FALSE(both.force.walk_from_energy);
   }
 }
 
@@ -1288,10 +1299,10 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
 
 // A curve cut by a collapse takes the collapse tables' factors (collapse_delta_scales and the strain
 // ones) by its noise kind and by how close the collapse comes to the force peak: near at 1.05 x_c, far
-// at 1.2 x_c; each interval is the bootstrap's own stretched by them, and none says calibrated (no cell
-// passed held-out 36). Under the corner form, which the factors were not learned with, with the bootstrap's
-// own asked for, or on a walk without its step profile, the intervals are the bootstrap's own, not
-// calibrated, and the warning says which.
+// at 1.2 x_c; each interval is the bootstrap's own stretched by them, calibrated in the white far cell
+// only (the cells that passed held-out 37). Under the corner form, which the factors were not learned with,
+// with the bootstrap's own asked for, or on a walk without its step profile, the intervals are the
+// bootstrap's own, not calibrated, and the warning says which.
 TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
   // The cells written out here, not through CollapseIntervalScales::for_curve, so a swap there shows.
   const auto cell = [](const CollapseIntervalScales& table, bool walk, bool near) {
@@ -1371,6 +1382,35 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       }
     }
   }
+}
+
+// A white curve cut 20 % past its peak sits in a calibrated cell (white far); with a ringing on F as
+// large as three times its white noise the noise model reads a ringing, which leaves its intervals not
+// calibrated, and the collapse warning, said after it, says so instead of "calibrated".
+TEST(AnalyzeCurve, ACalibratedCollapseCellLeftUncalibratedByARingingSaysSo) {
+  const double x_c = std::cbrt(1.0 / 3.0);
+  Curve c = brittle_curve(1.2 * x_c, 500, 3);
+  const calibration::StepOscillator mode(3.3);
+  Rng rng(21, RandomStream::analysis_noise);
+  std::vector<double> ringing(c.force.size(), 0.0);
+  for (std::size_t i = 2; i < ringing.size(); ++i) mode.step(ringing, i, rng.normal());
+  double square = 0.0;
+  for (double v : ringing) square += v * v / double(ringing.size());
+  const auto plain = analyze_curve(c, {});
+  for (std::size_t i = 0; i < c.force.size(); ++i)
+    c.force[i] += 0.06 * weibull3_force(x_c) * ringing[i] / std::sqrt(square);
+  const auto r = analyze_curve(c, {});
+  ASSERT_TRUE(plain.accepted && r.accepted) << plain.rejection << r.rejection;
+  ASSERT_FALSE(scored_as_random_walk(r));
+  ASSERT_FALSE(is_near_collapse(*collapse_closeness(r)));
+  EXPECT_TRUE(plain.interval_scales.calibrated);
+  EXPECT_TRUE(
+      warns(plain, "how close the collapse comes (near: less than 10 % of x_c after it), calibrated"));
+  ASSERT_TRUE(ringing_read(r));
+  EXPECT_FALSE(r.interval_scales.calibrated || r.x_c_interval->scales.calibrated ||
+               r.x_p_interval->scales.calibrated);
+  EXPECT_TRUE(warns(r, "rings"));
+  EXPECT_TRUE(warns(r, "not calibrated here, although this cell passed held-out 37"));
 }
 
 // Cut 5 % past the force peak (the default study's run breaks 7 % past it), the loading's filtered end

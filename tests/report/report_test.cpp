@@ -239,8 +239,9 @@ TEST(Report, HtmlCheckerCatchesBrokenPages) {
 
 // Where δ_x's intervals are not calibrated because the curve's white noise lies below the level from
 // which the white factors were checked (analysis.json's delta_x.interval_scales.white_share), the report
-// says so with the level; where the curve was split at a sharp collapse (collapse_onset), it says
-// that, whatever the level; other uncalibrated intervals get the plain mark.
+// says so with the level, with a collapse or without; where the curve was split at a sharp collapse
+// (collapse_onset) at a level checked or on a walk, it says that; other uncalibrated intervals get the
+// plain mark.
 TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   TempDir dir;
   const auto run = analysed_tissue_run(dir);
@@ -254,17 +255,24 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   EXPECT_THAT(check_well_formed(slurp(run / "report.html")).body_text,
               HasSubstr("its intervals are not calibrated: the curve's white noise, 0.09 % of its peak, lies "
                         "below the 0.17 % from which the white factors were checked"));
-  // A collapse is the reason even where the level is low too: its factors are calibrated at no level.
+  // The low level is the reason with a collapse too: below it no factor is calibrated.
   analysis["collapse_onset"] = {{"unit", "%"}, {"value", 0.4194}};
+  io::write_json_atomically(run / "analysis.json", analysis);
+  ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
+  const auto low_and_cut = check_well_formed(slurp(run / "report.html")).body_text;
+  EXPECT_THAT(low_and_cut, HasSubstr("lies below the 0.17 % from which the white factors were checked"));
+  EXPECT_THAT(low_and_cut, Not(HasSubstr("collapse too sharp")));
+  // On a walk (no white share) the collapse is the reason: only white far cells are calibrated.
+  scales.erase("white_share");
   io::write_json_atomically(run / "analysis.json", analysis);
   ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
   const auto cut = check_well_formed(slurp(run / "report.html")).body_text;
   EXPECT_THAT(cut,
               HasSubstr("its intervals are not calibrated: the curve ends in a collapse too sharp for the "
                         "filter (from 0.4194 %)"));
-  EXPECT_THAT(cut, HasSubstr("where delta_x's intervals are calibrated at no noise level"));
+  EXPECT_THAT(cut, HasSubstr("where delta_x's intervals are calibrated only on white noise with the collapse "
+                             "10 % of x_c or more past the force peak"));
   EXPECT_THAT(cut, Not(HasSubstr("white factors were checked")));
-  scales.erase("white_share");
   analysis["collapse_onset"] = nullptr;
   io::write_json_atomically(run / "analysis.json", analysis);
   ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
