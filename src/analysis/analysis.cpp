@@ -138,6 +138,7 @@ CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& c
   const bool row_means = choice.strain.empty() && choice.force.empty() && choice.energy.empty() &&
                          table.find("strain_mean") && table.find("force_top_mean") &&
                          table.find("elastic_energy_mean");
+  c.rows_are_means = row_means;
   if (row_means) {
     c.strain = *table.find("strain_mean");
     c.force = *table.find("force_top_mean");
@@ -167,6 +168,7 @@ Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice) {
   curve.force_column = table.header[columns.force];
   curve.energy_column = table.header[columns.energy];
   curve.warnings = columns.warnings;
+  curve.rows_are_means = columns.rows_are_means;
   return curve;
 }
 
@@ -462,7 +464,8 @@ struct BootstrapRun {
 
 std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, std::span<const double> force,
                                                   std::span<const double> energy, const PeakMeasurement& m,
-                                                  const PeakSearch& search, const BootstrapOptions& options) {
+                                                  const PeakSearch& search, const BootstrapOptions& options,
+                                                  RowKind rows) {
   const bool have_energy_peak = m.energy.found;
   const auto values = peak_values(m, have_energy_peak);
   if (!values) return std::nullopt;
@@ -494,11 +497,12 @@ std::optional<BootstrapRun> bootstrap_measurement(std::span<const double> xs, st
   // error on brittle curves with known answers. With the collapse outside the span, the outliers'
   // scale can follow the walk's growth along the loading (OutlierScale::local), and the walk's profile
   // is normalised over the same span (docs/analysis.md, "The bootstrap's noise read on the loading").
+  // A walk on rows that are interval means is read with their own term (RowKind).
   run.noise_high =
       m.collapse_onset && *m.collapse_onset >= run.low + shortest_noise_span && *m.collapse_onset <= run.high
           ? *m.collapse_onset - 1
           : run.high;
-  run.noise = estimate_noise(force, energy, run.low, run.noise_high, OutlierScale::local);
+  run.noise = estimate_noise(force, energy, run.low, run.noise_high, OutlierScale::local, rows);
   if (options.walk_profile) add_walk_profiles(run.noise, xs, force, run.low, run.noise_high);
   add_hidden_force_walk(run.noise, xs, force, energy, run.low, run.noise_high);
   const auto window_x = xs.subspan(run.low, count);
@@ -689,6 +693,8 @@ void bound_smoothing_by_rise(const Grid& g, const SmoothingShares& shares, Filte
 // 5,000 rows, recorded to about seven times x_c, were then read as white and barely smoothed;
 // docs/analysis.md). The loading part, up to twice the raw force maximum, is then read instead; a
 // curve without noise stays without.
+// The rows are read as instants even where they are interval means: the kinds' thresholds and the
+// filter rules were set on that reading.
 NoiseModel noise_for_kind(const Grid& g) {
   const std::size_t n = g.size();
   const NoiseModel whole = estimate_noise(g.force(), g.energy(), 0, n - 1);
@@ -1219,6 +1225,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.energy_unit = curve.energy_unit;
   r.delay_method = options.delay_method;
   r.warnings = curve.warnings;
+  r.rows_are_means = curve.rows_are_means;
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
@@ -1238,7 +1245,9 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // was scored on held-out 24.
   BootstrapOptions uncertainty = options.uncertainty;
   uncertainty.walk_profile = uncertainty.walk_profile && reads_random_walk(r);
-  if (const auto run = bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, uncertainty)) {
+  const RowKind rows = r.rows_are_means ? RowKind::interval_means : RowKind::instants;
+  if (const auto run =
+          bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, uncertainty, rows)) {
     const auto direct = record_intervals(g, *run, search, options.derivative_window, r);
     estimate_delay(g, *run, direct, options, r);
   }

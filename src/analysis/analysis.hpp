@@ -42,12 +42,16 @@ struct Curve {
   std::string strain_unit, force_unit, energy_unit;
   std::string strain_column, force_column, energy_column;  // header fields used
   std::vector<std::string> warnings;                       // e.g. a column whose header names no unit
+  // Each row the means over its interval (rupture run's *_mean columns), not an instant's values: the
+  // noise model reads a walk on such rows with its own term (RowKind::interval_means).
+  bool rows_are_means = false;
 };
 
 // Where the three columns are in a table's header, and their units after scaling. Throws
 // InputError naming the file, the missing column and the option that names it.
 struct CurveColumns {
   std::size_t strain = 0, force = 0, energy = 0;
+  bool rows_are_means = false;  // a run's *_mean columns
   std::string strain_unit, force_unit, energy_unit;
   std::vector<std::string> warnings;
 };
@@ -326,7 +330,8 @@ struct AlphaEstimate {
 struct AnalysisResult {
   std::string source;
   ResampleReport resample;
-  FilterSettings filter;  // with the automatic choices filled in
+  bool rows_are_means = false;  // Curve::rows_are_means, as the noise model read the rows
+  FilterSettings filter;        // with the automatic choices filled in
   // The noise kind read in each curve over the whole record: whether a random walk dominates it.
   // One filter serves both; its automatic choice ran on the increments where either reads so.
   bool force_walk = false, energy_walk = false;

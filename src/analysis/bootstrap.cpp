@@ -73,8 +73,9 @@ StructureFunction structure_function(std::span<const double> y, std::size_t low,
 
 // Fits S(L) ≈ 6σ_w² + 2L σ_r² + L⁴ c (white noise, random walk, the curve's own curvature) by
 // least squares relative to S(L), over every subset of the three terms with non-negative
-// coefficients; the best such fit wins.
-NoiseComponents fit_components(const std::vector<double>& s) {
+// coefficients; the best such fit wins. On interval means the walk's term is (2L − 1) σ_r² (RowKind).
+NoiseComponents fit_components(const std::vector<double>& s, RowKind rows) {
+  const double shared_walk = rows == RowKind::interval_means ? 1.0 : 0.0;
   NoiseComponents best;
   double best_misfit = std::numeric_limits<double>::infinity();
   for (int subset = 1; subset < 8; ++subset) {
@@ -84,7 +85,7 @@ NoiseComponents fit_components(const std::vector<double>& s) {
       const double L = scales[k], weight = s[k] > 0.0 ? 1.0 / s[k] : 0.0;
       const auto r = static_cast<Eigen::Index>(k);
       design(r, 0) = (subset & 1) ? 6.0 * weight : 0.0;
-      design(r, 1) = (subset & 2) ? 2.0 * L * weight : 0.0;
+      design(r, 1) = (subset & 2) ? (2.0 * L - shared_walk) * weight : 0.0;
       design(r, 2) = (subset & 4) ? L * L * L * L * weight : 0.0;
       target(r) = s[k] * weight;
     }
@@ -121,9 +122,12 @@ bool rings(const std::vector<double>& s) {
 // of about one period damps the ringing, and a walk's step over a block is √k times its step per
 // sample. The ringing itself enters as white noise of its own variance (the mean of S(L)/6 over the
 // lags, where its correlations average out), which the filter removes as it removes the ringing.
+// Block means of interval means are interval means; block means of instants are read as instants
+// (their exact term, (2L − 1 + 1/k²)σ², is not used: F's walk there is mostly taken from E_e's,
+// add_hidden_force_walk, and the change would need its own check).
 NoiseComponents fit_curve(std::span<const double> y, std::size_t low, std::size_t high,
-                          const std::vector<double>& s, OutlierScale outliers) {
-  if (!rings(s)) return fit_components(s);
+                          const std::vector<double>& s, OutlierScale outliers, RowKind rows) {
+  if (!rings(s)) return fit_components(s, rows);
   for (std::size_t k = 2; k <= 8; ++k) {
     const std::size_t blocks = (high + 1 - low) / k;
     if (blocks < shortest_span) break;
@@ -136,11 +140,11 @@ NoiseComponents fit_curve(std::span<const double> y, std::size_t low, std::size_
     if (rings(block.s)) continue;
     NoiseComponents c;
     c.ringing_block = k;
-    c.walk = fit_components(block.s).walk / std::sqrt(static_cast<double>(k));
+    c.walk = fit_components(block.s, rows).walk / std::sqrt(static_cast<double>(k));
     c.white = std::sqrt(std::accumulate(s.begin(), s.end(), 0.0) / (6.0 * static_cast<double>(s.size())));
     return c;
   }
-  return fit_components(s);
+  return fit_components(s, rows);
 }
 
 double quantile_sorted(const std::vector<double>& sorted, double p) {
@@ -155,14 +159,14 @@ double quantile_sorted(const std::vector<double>& sorted, double p) {
 }  // namespace
 
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
-                          std::size_t high, OutlierScale outliers) {
+                          std::size_t high, OutlierScale outliers, RowKind rows) {
   assert(force.size() == energy.size());
   high = std::min(high, force.size() - 1);
   NoiseModel model;
   const auto f = structure_function(force, low, high, outliers);
   const auto e = structure_function(energy, low, high, outliers);
-  model.force = fit_curve(force, low, high, f.s, outliers);
-  model.energy = fit_curve(energy, low, high, e.s, outliers);
+  model.force = fit_curve(force, low, high, f.s, outliers, rows);
+  model.energy = fit_curve(energy, low, high, e.s, outliers, rows);
   double cross = 0.0, ff = 0.0, ee = 0.0;
   for (std::size_t i = 0; i < f.d1.size(); ++i) {
     if (std::isnan(f.d1[i]) || std::isnan(e.d1[i])) continue;

@@ -59,8 +59,15 @@ enum class OutlierScale {
   // out the walk where it matters (docs/analysis.md, "The bootstrap's noise read on the loading").
   local,
 };
+// What one row of a curve holds: the values at an instant, or their means over the row's interval
+// (rupture run's *_mean columns). Neighbouring means share a part of the walk between them, so a
+// walk's second differences at lag L have variance (2L − 1)σ_r² on interval means where instants have
+// 2Lσ_r²; read with 2L, the fit took a pure walk's variance at 0.65-0.67 of its value (docs/analysis.md,
+// "The walk read on rows that are means").
+enum class RowKind { instants, interval_means };
 NoiseModel estimate_noise(std::span<const double> force, std::span<const double> energy, std::size_t low,
-                          std::size_t high, OutlierScale outliers = OutlierScale::span);
+                          std::size_t high, OutlierScale outliers = OutlierScale::span,
+                          RowKind rows = RowKind::instants);
 // The fewest samples a span needs for estimate_noise: the longest lag on both sides of 17 samples.
 inline constexpr std::size_t shortest_noise_span = 33;
 
