@@ -138,7 +138,7 @@ CurveColumns find_curve_columns(const io::CsvTable& table, const ColumnChoice& c
   const bool row_means = choice.strain.empty() && choice.force.empty() && choice.energy.empty() &&
                          table.find("strain_mean") && table.find("force_top_mean") &&
                          table.find("elastic_energy_mean");
-  c.rows_are_means = row_means;
+  c.rows = choice.rows.value_or(row_means ? RowKind::interval_means : RowKind::instants);
   if (row_means) {
     c.strain = *table.find("strain_mean");
     c.force = *table.find("force_top_mean");
@@ -168,7 +168,7 @@ Curve select_curve(const io::CsvTable& table, const ColumnChoice& choice) {
   curve.force_column = table.header[columns.force];
   curve.energy_column = table.header[columns.energy];
   curve.warnings = columns.warnings;
-  curve.rows_are_means = columns.rows_are_means;
+  curve.rows = columns.rows;
   return curve;
 }
 
@@ -1225,7 +1225,7 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   r.energy_unit = curve.energy_unit;
   r.delay_method = options.delay_method;
   r.warnings = curve.warnings;
-  r.rows_are_means = curve.rows_are_means;
+  r.rows = curve.rows;
   const std::optional<Grid> grid = uniform_grid(curve, options, r);  // 0–1
   if (!grid) return r;
   const Grid& g = *grid;
@@ -1245,9 +1245,8 @@ AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const 
   // was scored on held-out 24.
   BootstrapOptions uncertainty = options.uncertainty;
   uncertainty.walk_profile = uncertainty.walk_profile && reads_random_walk(r);
-  const RowKind rows = r.rows_are_means ? RowKind::interval_means : RowKind::instants;
   if (const auto run =
-          bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, uncertainty, rows)) {
+          bootstrap_measurement(g.xs, g.force(), g.energy(), measurement, search, uncertainty, r.rows)) {
     const auto direct = record_intervals(g, *run, search, options.derivative_window, r);
     estimate_delay(g, *run, direct, options, r);
   }

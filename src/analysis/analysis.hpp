@@ -33,6 +33,8 @@ struct ColumnChoice {
   std::string strain, force, energy;
   double strain_scale = 1.0, force_scale = 1.0, energy_scale = 1.0;  // multiply the column by this
   std::string strain_unit, force_unit, energy_unit;  // unit after scaling; empty = the header's
+  // What a row holds; unset: interval means where a run's *_mean columns are read, else instants.
+  std::optional<RowKind> rows;
 };
 
 // The three columns of one loading curve, scaled, in file order.
@@ -42,16 +44,16 @@ struct Curve {
   std::string strain_unit, force_unit, energy_unit;
   std::string strain_column, force_column, energy_column;  // header fields used
   std::vector<std::string> warnings;                       // e.g. a column whose header names no unit
-  // Each row the means over its interval (rupture run's *_mean columns), not an instant's values: the
-  // noise model reads a walk on such rows with its own term (RowKind::interval_means).
-  bool rows_are_means = false;
+  // Instants, or each row the means over its interval (rupture run's *_mean columns): the noise model
+  // reads a walk on means with its own term (RowKind).
+  RowKind rows = RowKind::instants;
 };
 
 // Where the three columns are in a table's header, and their units after scaling. Throws
 // InputError naming the file, the missing column and the option that names it.
 struct CurveColumns {
   std::size_t strain = 0, force = 0, energy = 0;
-  bool rows_are_means = false;  // a run's *_mean columns
+  RowKind rows = RowKind::instants;  // ColumnChoice::rows, else interval means for a run's *_mean columns
   std::string strain_unit, force_unit, energy_unit;
   std::vector<std::string> warnings;
 };
@@ -330,8 +332,8 @@ struct AlphaEstimate {
 struct AnalysisResult {
   std::string source;
   ResampleReport resample;
-  bool rows_are_means = false;  // Curve::rows_are_means, as the noise model read the rows
-  FilterSettings filter;        // with the automatic choices filled in
+  RowKind rows = RowKind::instants;  // Curve::rows, as the noise model read them
+  FilterSettings filter;             // with the automatic choices filled in
   // The noise kind read in each curve over the whole record: whether a random walk dominates it.
   // One filter serves both; its automatic choice ran on the increments where either reads so.
   bool force_walk = false, energy_walk = false;

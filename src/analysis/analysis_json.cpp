@@ -3,6 +3,7 @@
 #include <type_traits>
 
 #include "analysis/analysis.hpp"
+#include "analysis/option_words.hpp"
 #include "io/quantity.hpp"
 
 namespace rupture::analysis {
@@ -195,7 +196,7 @@ nlohmann::json to_json(const AnalysisResult& r) {
                    {"on_lattice", r.resample.on_lattice},
                    {"output_rows", r.resample.output_rows},
                    {"block_average", r.resample.block_average},
-                   {"rows", r.rows_are_means ? "interval means" : "instants"},
+                   {"rows", word_of(row_kind_words, r.rows)},
                    {"step", io::quantity(r.resample.step, r.strain_unit)}};
   j["filter"] = filter_json(r);
   j["derivative"] = {{"method", "Savitzky-Golay, cubic"}, {"window_samples", r.derivative_window}};

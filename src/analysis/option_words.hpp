@@ -24,6 +24,8 @@ inline constexpr std::array<OptionWord<DelayMethod>, 2> delay_method_words{
     {{"fitted-maxima", DelayMethod::fitted_maxima}, {"shift-l1", DelayMethod::shift_l1}}};
 inline constexpr std::array<OptionWord<PeakForm>, 2> peak_form_words{
     {{"smooth", PeakForm::smooth}, {"corner", PeakForm::corner}}};
+inline constexpr std::array<OptionWord<RowKind>, 2> row_kind_words{
+    {{"instants", RowKind::instants}, {"interval-means", RowKind::interval_means}}};
 
 // Noise replicates of the bootstrap a caller may ask for (BootstrapOptions::replicates).
 inline constexpr int min_replicates = 20, max_replicates = 100'000;

@@ -152,6 +152,16 @@ void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns) {
   cmd.add_option("--force-unit", columns.force_unit, "Force unit after scaling (default: from the header)");
   cmd.add_option("--energy-unit", columns.energy_unit,
                  "Energy unit after scaling (default: from the header)");
+  cmd.add_option_function<std::string>(
+         "--rows",
+         [&columns](const std::string& word) {
+           columns.rows = analysis::from_word(analysis::row_kind_words, word);
+         },
+         "What a row holds: instants, or interval-means (each row the mean over its interval, as rupture "
+         "run's "
+         "*_mean columns or LAMMPS fix ave/time write them; the noise model reads a walk on them by its own "
+         "term). Default: interval-means where a run's *_mean columns are read, else instants")
+      ->check(CLI::IsMember(analysis::word_list(analysis::row_kind_words)));
 }
 
 AnalyzeOutcome analyze_and_write(const AnalyzeOptions& options) {

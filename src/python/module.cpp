@@ -328,13 +328,28 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 
 // ---- analysis ----------------------------------------------------------------------------------
 
-// rupture.analyze's options, by keyword (the package passes all six, with its defaults; docs/python.md
+// What a row holds, from the keyword `rows` ("instants" or "interval-means"; absent or None: as the
+// columns say, analysis::ColumnChoice::rows).
+std::optional<analysis::RowKind> row_kind(const py::kwargs& given) {
+  if (!given.contains("rows") || given["rows"].is_none()) return std::nullopt;
+  const auto word = given["rows"].cast<std::string>();
+  const auto chosen = analysis::from_word(analysis::row_kind_words, word);
+  if (!chosen)
+    throw InputError(
+        "rows", "'" + word + "' is not what a row holds",
+        "use " + analysis::quoted_words(analysis::row_kind_words) + " (or None: as the columns say)");
+  return chosen;
+}
+
+// rupture.analyze's options, by keyword (the package passes all seven, with its defaults; docs/python.md
 // names them). A new option is one more branch here, not one more argument down the call chain.
 analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
   analysis::AnalysisOptions options;
   for (const auto& [key, value] : given) {
     const auto name = key.cast<std::string>();
-    if (name == "delay_method") {
+    if (name == "rows") {
+      continue;  // the curve's, not the analysis's (row_kind)
+    } else if (name == "delay_method") {
       const auto method = value.cast<std::string>();
       const auto chosen = analysis::from_word(analysis::delay_method_words, method);
       if (!chosen)
@@ -373,7 +388,7 @@ analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
     } else {
       throw InputError(
           "analyze", "'" + name + "' is not an option",
-          "use delay_method, replicates, seed, walk_profile, force_peak_form or smoothing_floor");
+          "use delay_method, replicates, seed, walk_profile, force_peak_form, smoothing_floor or rows");
     }
   }
   return options;
@@ -398,6 +413,7 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
   curve.strain_column = "strain";
   curve.force_column = "force";
   curve.energy_column = "elastic_energy";
+  curve.rows = row_kind(given).value_or(analysis::RowKind::instants);
   const auto options = analysis_options(given);
   json document;
   {
@@ -409,18 +425,21 @@ py::dict analyze_arrays(std::vector<double> strain, std::vector<double> force, s
 }
 
 // The columns (strain, force, energy) rupture analyze reads from a table with this header
-// (analysis::find_curve_columns): a DataFrame is read as its file would be.
-std::tuple<std::size_t, std::size_t, std::size_t> columns_read(const std::vector<std::string>& header) {
+// (analysis::find_curve_columns), and what their rows hold: a DataFrame is read as its file would be.
+std::tuple<std::size_t, std::size_t, std::size_t, std::string_view> columns_read(
+    const std::vector<std::string>& header) {
   io::CsvTable table;
   table.source = "analyze: the DataFrame";
   table.header = header;
   const auto columns = analysis::find_curve_columns(table);
-  return {columns.strain, columns.force, columns.energy};
+  return {columns.strain, columns.force, columns.energy,
+          analysis::word_of(analysis::row_kind_words, columns.rows)};
 }
 
 py::dict analyze_file(const std::filesystem::path& curves, const py::kwargs& given) {
   analysis::CurveFileInputs inputs;
   inputs.curves = curves;
+  inputs.columns.rows = row_kind(given);
   inputs.options = analysis_options(given);
   json document;
   {

@@ -38,12 +38,18 @@ TEST(CurveColumns, ARunsRowMeansAreReadAsASetUnlessAColumnIsNamed) {
   const auto means = find_curve_columns(table);
   EXPECT_EQ(std::tuple(means.strain, means.force, means.energy), std::tuple(4u, 5u, 6u));
   EXPECT_EQ(select_curve(table).force_column, "force_top_mean[N]");
-  EXPECT_TRUE(select_curve(table).rows_are_means);
+  EXPECT_EQ(select_curve(table).rows, RowKind::interval_means);
   ColumnChoice force_named;
   force_named.force = "force_top";
   const auto named = find_curve_columns(table, force_named);
   EXPECT_EQ(std::tuple(named.strain, named.force, named.energy), std::tuple(1u, 2u, 3u));
-  EXPECT_FALSE(select_curve(table, force_named).rows_are_means);
+  EXPECT_EQ(select_curve(table, force_named).rows, RowKind::instants);
+  ColumnChoice said_means = force_named;  // a named column whose rows the caller says are means
+  said_means.rows = RowKind::interval_means;
+  EXPECT_EQ(select_curve(table, said_means).rows, RowKind::interval_means);
+  ColumnChoice said_instants;
+  said_instants.rows = RowKind::instants;
+  EXPECT_EQ(select_curve(table, said_instants).rows, RowKind::instants);
   const auto without = io::parse_csv(
       "strain[%],force_top[N],elastic_energy[mJ],strain_mean[%],force_top_mean[N]\n0,0,0,0,0\n1,2,3,4,5\n",
       "old.csv");
@@ -1056,9 +1062,9 @@ TEST(CalibrationSets, ARunLikeCurveHasTheRunsRowsItsRingingAndItsCollapse) {
   const Curve means = run_like_curve(s, 10000, {200, true, 0.008, false}, seed);
   ASSERT_EQ(samples.strain.size(), 501u);
   ASSERT_EQ(means.strain.size(), 501u);
-  EXPECT_FALSE(samples.rows_are_means);
-  EXPECT_TRUE(means.rows_are_means) << "read as rupture run's *_mean columns are";
-  EXPECT_EQ(to_json(analyze_curve(means, {}))["resample"]["rows"], "interval means");
+  EXPECT_EQ(samples.rows, RowKind::instants);
+  EXPECT_EQ(means.rows, RowKind::interval_means) << "read as rupture run's *_mean columns are";
+  EXPECT_EQ(to_json(analyze_curve(means, {}))["resample"]["rows"], "interval-means");
   EXPECT_EQ(to_json(analyze_curve(samples, {}))["resample"]["rows"], "instants");
   for (std::size_t i = 1; i < samples.strain.size(); ++i) {
     const double row_end = 200.0 * static_cast<double>(i);

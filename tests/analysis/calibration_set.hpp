@@ -557,7 +557,7 @@ inline Curve run_like_curve(const Shape& s, std::size_t fibers, const RunRows& r
   Curve c;
   c.source = s.name + " run-like";
   c.strain_unit = c.force_unit = c.energy_unit = "1";
-  c.rows_are_means = rows.means;
+  c.rows = rows.means ? RowKind::interval_means : RowKind::instants;
   for (std::size_t end = 0; end < steps.strain.size(); end += rows.every) {
     c.strain.push_back(row(steps.strain, end));
     c.force.push_back(row(steps.force, end));

@@ -53,6 +53,32 @@ TEST(AnalyzeCli, AQuietCurvesIntervalsSayTheyAreSizedForARandomWalk) {
   EXPECT_EQ(j["x_c"]["interval_scales"]["noise"], "random walk");
 }
 
+// --rows says what a file's rows hold where its columns cannot: the same file read as instants by
+// default and as interval means when told, the walk then read larger (its own term, (2L − 1) σ_r²);
+// a word that names no kind of row is refused.
+TEST(AnalyzeCli, RowsThatAreIntervalMeansAreReadSoWhenTold) {
+  TempDir dir;
+  const Curve c = calibration::run_like_curve(calibration::weibull(3), 10000, {200, true, 0.0, false}, 3);
+  write_curve(dir / "means.csv", c, "strain[1],force[1],elastic_energy[1]");
+  const auto as_instants =
+      run_rupture("analyze " + quoted(dir / "means.csv") + " -o " + quoted(dir / "i.json"));
+  const auto as_means = run_rupture("analyze " + quoted(dir / "means.csv") + " --rows interval-means -o " +
+                                    quoted(dir / "m.json"));
+  ASSERT_NE(as_instants.exit_code, 2) << as_instants.err;
+  ASSERT_NE(as_means.exit_code, 2) << as_means.err;
+  const auto i = nlohmann::json::parse(slurp(dir / "i.json")),
+             m = nlohmann::json::parse(slurp(dir / "m.json"));
+  EXPECT_EQ(i["resample"]["rows"], "instants");
+  EXPECT_EQ(m["resample"]["rows"], "interval-means");
+  const auto walk = [](const nlohmann::json& j) {
+    return j["uncertainty"]["noise"]["elastic_energy"]["walk_step_sd"]["value"].get<double>();
+  };
+  EXPECT_GT(walk(m), 1.05 * walk(i));
+  const auto wrong = run_rupture("analyze " + quoted(dir / "means.csv") + " --rows means");
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("--rows"), std::string::npos) << wrong.err;
+}
+
 // A uniform bundle's curve that falls by e every 3 rows from 1.05 x_c on, with E_e's white noise at
 // 0.05 % of its top, below the levels x_p's white factors follow: the curve is cut by a collapse, on
 // which no factors follow a level, so the terminal names the collapse (a warning) and no level.

@@ -190,7 +190,8 @@ def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
     run = rupture.read_run(study / "run")
     for a in (rupture.analyze(run.curves), rupture.analyze(study / "run" / "curves.csv"),
               rupture.analyze(run.curves["strain_mean[%]"], run.curves["force_top_mean[N]"],
-                              run.curves["elastic_energy_mean[mJ]"])):
+                              run.curves["elastic_energy_mean[mJ]"], rows="interval-means")):
+        assert a.document["resample"]["rows"] == "interval-means"
         for key in ("x_p", "x_c", "x_m", "A_r"):
             assert getattr(a, key).value == pytest.approx(expected[key]["value"], rel=1e-12), key
             assert getattr(a, key).unit == expected[key]["unit"]
@@ -200,6 +201,11 @@ def test_analyze_gives_the_numbers_of_rupture_analyze(tmp_path):
         assert a.units == {"strain": "%", "force": "N", "energy": "mJ"}
         delta, density = a.posterior
         assert delta.shape == density.shape and np.all(density >= 0)
+    # Three arrays are instants unless said otherwise; a word that names no kind of row is refused.
+    means = [run.curves[c] for c in ("strain_mean[%]", "force_top_mean[N]", "elastic_energy_mean[mJ]")]
+    assert rupture.analyze(*means).document["resample"]["rows"] == "instants"
+    with pytest.raises(rupture.InputError, match="'means' is not what a row holds"):
+        rupture.analyze(*means, rows="means")
     # Only the file carries the breaks, so only it classifies as the CLI does.
     assert rupture.analyze(study / "run" / "curves.csv").mechanism == expected["mechanism"]["class"]
 
@@ -209,8 +215,8 @@ def test_a_dataframe_is_read_by_the_columns_rupture_analyze_picks():
     header = ["time[s]", "strain[%]", "force_top[N]", "elastic_energy[mJ]", "strain_mean[%]",
               "force_top_mean[N]", "elastic_energy_mean[mJ]"]
     import pandas as pd
-    assert rupture._rupture.columns_read(header) == (4, 5, 6)
-    assert rupture._rupture.columns_read(header[:5]) == (1, 2, 3)
+    assert rupture._rupture.columns_read(header) == (4, 5, 6, "interval-means")
+    assert rupture._rupture.columns_read(header[:5]) == (1, 2, 3, "instants")
     with pytest.raises(rupture.InputError, match="no column 'strain'.*from Python: name the DataFrame's columns"):
         rupture.analyze(pd.DataFrame({"force": [0.0, 1.0], "elastic_energy": [0.0, 1.0]}))
 

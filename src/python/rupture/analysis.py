@@ -76,7 +76,7 @@ class Analysis:
 
 
 def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_method="fitted-maxima",
-            replicates=0, seed=1, walk_profile=True, force_peak_form="smooth", smoothing_floor=0.0):
+            replicates=0, seed=1, walk_profile=True, force_peak_form="smooth", smoothing_floor=0.0, rows=None):
     """Analyses a curve given as
       - a DataFrame with columns strain, force (or force_top) and elastic_energy, units taken from
         names like strain[%] (e.g. Run.curves, read_curves()); a run's strain_mean, force_top_mean and
@@ -93,23 +93,29 @@ def analyze(data, force=None, energy=None, *, units=("%", "N", "mJ"), delay_meth
     analyze --force-peak-form corner);
     smoothing_floor: where the noise of F or E_e reads as white, the automatic filter averages over at
     least this share of the rows up to the force peak, where they are 100 or more (default 0: the noise
-    alone chooses; 0.25 mends DEM runs at rows every 100-200 steps; rupture analyze --smoothing-floor)."""
+    alone chooses; 0.25 mends DEM runs at rows every 100-200 steps; rupture analyze --smoothing-floor);
+    rows: what a row holds, "instants" or "interval-means" (each row the mean over its interval, as a
+    run's *_mean columns hold; the noise model reads a walk on such rows by its own term); None
+    (default): interval-means where a run's *_mean columns are read, else instants (rupture analyze
+    --rows)."""
     options = dict(delay_method=str(delay_method), replicates=int(replicates), seed=int(seed),
                    walk_profile=bool(walk_profile), force_peak_form=str(force_peak_form),
-                   smoothing_floor=float(smoothing_floor))
+                   smoothing_floor=float(smoothing_floor), rows=None if rows is None else str(rows))
     if isinstance(data, (str, Path)):
         return Analysis(_rupture.analyze_file(str(data), **options))
     if force is None and hasattr(data, "columns"):
         frame = data
         names = [str(c) for c in frame.columns]
         try:
-            columns = [names[i] for i in _rupture.columns_read(names)]  # as rupture analyze picks them
+            *picked, rows_read = _rupture.columns_read(names)  # as rupture analyze picks them
+            columns = [names[i] for i in picked]
         except _rupture.InputError as e:  # its fix names the command line's options; say Python's
             raise _rupture.InputError(f"{e}; from Python: name the DataFrame's columns strain, force (or "
                                       "force_top) and elastic_energy, or pass three arrays") from None
         found = frame.attrs.get("units", {})
         units = tuple(found.get(c, "1") for c in columns)
         strain, force, energy = (frame[c].to_numpy(dtype=float) for c in columns)
+        options["rows"] = options["rows"] or rows_read
     else:
         strain = data
         if force is None or energy is None:
