@@ -1009,6 +1009,16 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (had_learned_factors) r.warnings.push_back(std::move(why));
 }
 
+// "a", "a and b", "a, b and c".
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) text += i + 1 == names.size() ? " and " : ", ";
+    text += names[i];
+  }
+  return text;
+}
+
 // The warning of a record cut by a sharp collapse: where the collapse lies, and whether its intervals
 // took the factors of such curves (`cut_factors`, takes_collapse_factors) or are the bootstrap's own,
 // and which of them are calibrated (read after every other mark: a ringing one says not).
@@ -1021,38 +1031,37 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
           : std::string();
   // δ_x's factors apply to the fitted maxima only (the l1 shift's interval is its posterior).
   const bool delta_scaled = r.delay_method == DelayMethod::fitted_maxima;
-  std::vector<std::string> calibrated, not_calibrated;
-  const auto sort = [&](const char* name, bool is_calibrated) {
-    (is_calibrated ? calibrated : not_calibrated).emplace_back(name);
+  // Each interval: calibrated; not here, although its cell passed the check (another mark took it away,
+  // or its white level lies below the checked ones); or not, its cell having failed.
+  std::vector<std::string> calibrated, withdrawn, failed;
+  const auto sort = [&](const char* name, bool is_calibrated, const CollapseIntervalScales& cells) {
+    const bool cell_passed =
+        closeness && cells.for_curve(scored_as_random_walk(r), is_near_collapse(*closeness)).calibrated;
+    (is_calibrated ? calibrated : cell_passed ? withdrawn : failed).emplace_back(name);
   };
-  sort("x_c", r.x_c_interval && r.x_c_interval->scales.calibrated);
-  sort("x_p", r.x_p_interval && r.x_p_interval->scales.calibrated);
-  if (delta_scaled) sort("delta_x", r.interval_scales.calibrated);
-  // Whether the curve's cell passed its check (δ_x's, x_c's and x_p's white far cells passed together).
-  const bool cell_passed =
-      closeness &&
-      collapse_delta_scales.for_curve(scored_as_random_walk(r), is_near_collapse(*closeness)).calibrated;
-  const std::string status =
-      not_calibrated.empty() ? std::string(
-                                   "calibrated (held-out 37: 67-70 % at 68 % and 95-96 % at 95 % in "
-                                   "this cell)")
-      : !calibrated.empty() ? fmt::format("calibrated for {}, not for {}", fmt::join(calibrated, " and "),
-                                          fmt::join(not_calibrated, " and "))
-      : cell_passed
-          ? std::string(
-                "not calibrated here, although this cell passed held-out 37: another warning says why "
-                "(a ringing, the smoothing floor), or the curve's white noise lies below the level "
-                "from which the white factors were checked")
-          : std::string(
-                "not calibrated: on curves with known answers (held-out 37) delta_x's 68 % interval covered "
-                "67-69 % of them by noise kind and closeness, but 31 % of finite bundles cut within 2 % past "
-                "their peak and 53-54 % of run-like means every 100 and 400 steps with a far collapse");
+  sort("x_c", r.x_c_interval && r.x_c_interval->scales.calibrated, collapse_critical_scales);
+  sort("x_p", r.x_p_interval && r.x_p_interval->scales.calibrated, collapse_precursor_scales);
+  if (delta_scaled) sort("delta_x", r.interval_scales.calibrated, collapse_delta_scales);
+  std::vector<std::string> status;
+  if (!calibrated.empty())
+    status.push_back(
+        fmt::format("calibrated{} (their cell passed {})",
+                    withdrawn.empty() && failed.empty() ? std::string() : " for " + listed(calibrated),
+                    collapse_factors_checked_on));
+  if (!withdrawn.empty())
+    status.push_back(fmt::format(
+        "not calibrated here for {}, although their cell passed {}: another warning says why (a ringing, "
+        "the smoothing floor), or the curve's white noise lies below the level from which the white factors "
+        "were checked",
+        listed(withdrawn), collapse_factors_checked_on));
+  if (!failed.empty())
+    status.push_back(fmt::format("not calibrated for {}: {}", listed(failed), collapse_check_shortfall));
   const std::string intervals =
       cut_factors
           ? fmt::format(
                 "the intervals of x_c, x_p{} take the factors of such curves by how close the collapse "
-                "comes (near: less than {:g} % of x_c after it), {}",
-                delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness, status)
+                "comes (near: less than {:g} % of x_c after it); {}",
+                delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness, fmt::join(status, "; "))
           : fmt::format(
                 "the intervals of x_c, x_p{} are the bootstrap's own, not calibrated (the factors of "
                 "such curves apply to a positive x_c under the default peak form with calibrated "
@@ -1061,8 +1070,8 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
   return fmt::format(
       "the record ends in a collapse too sharp for the filter (from x = {:.6g} {}{}), filtered apart from "
       "the loading; {} (docs/analysis.md, \"Intervals of a curve cut by a collapse, by how close it "
-      "comes\" and \"F's walk taken from E_e's where F rings, checked on held-out 37\")",
-      *r.collapse_onset, r.strain_unit, where, intervals);
+      "comes\" and \"{}\")",
+      *r.collapse_onset, r.strain_unit, where, intervals, collapse_check_section);
 }
 
 // The cases whose intervals no check has calibrated: a noise model that read a ringing curve, a filter

@@ -1297,8 +1297,10 @@ TEST(AnalyzeCurve, RowsInClosePairsAreNotPutOnTheLatticeOfTheirSmallGap) {
 }
 
 // A Weibull k = 3 curve that falls by e every 3 rows from `cut` on (a brittle sample breaking apart), F
-// with 2 % white noise and E_e with 0.2 %, as on rupture's own runs.
-Curve brittle_curve(double cut, std::size_t rows, std::uint64_t seed) {
+// with white noise of `force_noise` of F_c and E_e of `energy_noise` of its value at the cut (by default
+// 2 % and 0.2 %, as on rupture's own runs).
+Curve brittle_curve(double cut, std::size_t rows, std::uint64_t seed, double force_noise = 0.02,
+                    double energy_noise = 0.002) {
   const double x_c = std::cbrt(1.0 / 3.0);
   Curve c;
   c.source = "collapse";
@@ -1311,7 +1313,7 @@ Curve brittle_curve(double cut, std::size_t rows, std::uint64_t seed) {
     c.force.push_back(weibull3_force(std::min(x, cut)) * fall);
     c.energy.push_back(weibull3_energy(std::min(x, cut)) * fall);
   }
-  add_noise(c, 0.02 * weibull3_force(x_c), 0.002 * weibull3_energy(cut), seed);
+  add_noise(c, force_noise * weibull3_force(x_c), energy_noise * weibull3_energy(cut), seed);
   return c;
 }
 
@@ -1408,12 +1410,13 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
           << which;
       EXPECT_TRUE(warns(r, near ? "x_c after x_c: near" : "x_c after x_c: far")) << which;
       EXPECT_TRUE(warns(r, "take the factors of such curves")) << which;
-      EXPECT_TRUE(warns(r, calibrated_cell
-                               ? "how close the collapse comes (near: less than 10 % of x_c after it), "
-                                 "calibrated (held-out 37"
-                               : "how close the collapse comes (near: less than 10 % of x_c after it), not "
-                                 "calibrated"))
-          << which;
+      EXPECT_TRUE(warns(
+          r, calibrated_cell ? fmt::format("how close the collapse comes (near: less than 10 % of x_c after "
+                                           "it); calibrated (their cell passed {})",
+                                           collapse_factors_checked_on)
+                             : std::string("how close the collapse comes (near: less than 10 % of x_c after "
+                                           "it); not calibrated for x_c, x_p and delta_x")))
+          << which << ": " << fmt::format("{}", fmt::join(r.warnings, "\n"));
       EXPECT_TRUE(warns(bootstrap, "are the bootstrap's own, not calibrated")) << which;
       // The corner form keeps the bootstrap's own; a stationary walk step does on a walk only (a white
       // curve's intervals do not use the walk's step).
@@ -1450,12 +1453,35 @@ TEST(AnalyzeCurve, ACalibratedCollapseCellLeftUncalibratedByARingingSaysSo) {
   ASSERT_FALSE(is_near_collapse(*collapse_closeness(r)));
   EXPECT_TRUE(plain.interval_scales.calibrated);
   EXPECT_TRUE(
-      warns(plain, "how close the collapse comes (near: less than 10 % of x_c after it), calibrated"));
+      warns(plain, "how close the collapse comes (near: less than 10 % of x_c after it); calibrated (their"));
   ASSERT_TRUE(ringing_read(r));
   EXPECT_FALSE(r.interval_scales.calibrated || r.x_c_interval->scales.calibrated ||
                r.x_p_interval->scales.calibrated);
   EXPECT_TRUE(warns(r, "rings"));
-  EXPECT_TRUE(warns(r, "not calibrated here, although this cell passed held-out 37"));
+  EXPECT_TRUE(
+      warns(r, fmt::format("not calibrated here for x_c, x_p and delta_x, although their cell passed {}",
+                           collapse_factors_checked_on)));
+}
+
+// In the calibrated white far cell, F's white noise at 0.05 % of F_c lies below the level from which the
+// white factors were checked (white_factors_checked_from) while E_e's, at 1 % of its top, lies within:
+// x_c's interval (sized by F's noise) keeps its factor, not calibrated, x_p's and δ_x's (the larger of
+// the two levels) are calibrated, and the collapse warning names both sides.
+TEST(AnalyzeCurve, ACollapseCellCalibratedForSomeIntervalsSaysWhichAreNot) {
+  const double x_c = std::cbrt(1.0 / 3.0), cut = 1.2 * x_c;
+  const auto r = analyze_curve(brittle_curve(cut, 500, 3, 5e-4, 0.01), {});
+  ASSERT_TRUE(r.accepted) << r.rejection;
+  ASSERT_FALSE(scored_as_random_walk(r));
+  ASSERT_FALSE(is_near_collapse(*collapse_closeness(r)));
+  EXPECT_FALSE(r.x_c_interval->scales.calibrated);
+  EXPECT_EQ(r.x_c_interval->scales.level68, collapse_critical_scales.white_far.level68);
+  EXPECT_TRUE(r.x_p_interval->scales.calibrated);
+  EXPECT_TRUE(r.interval_scales.calibrated);
+  EXPECT_TRUE(
+      warns(r, fmt::format("; calibrated for x_p and delta_x (their cell passed {}); not calibrated here for "
+                           "x_c, although their cell passed",
+                           collapse_factors_checked_on)))
+      << fmt::format("{}", fmt::join(r.warnings, "\n"));
 }
 
 // Cut 5 % past the force peak (the default study's run breaks 7 % past it), the loading's filtered end
