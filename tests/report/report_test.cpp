@@ -262,7 +262,7 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   const auto low_and_cut = check_well_formed(slurp(run / "report.html")).body_text;
   EXPECT_THAT(low_and_cut, HasSubstr("lies below the 0.17 % from which the white factors were checked"));
   EXPECT_THAT(low_and_cut, Not(HasSubstr("collapse too sharp")));
-  // On a walk (no white share) the collapse is the reason: only white far cells are calibrated.
+  // On a walk (no white share) the collapse is the reason: only δ_x's far walk cell is calibrated.
   scales.erase("white_share");
   io::write_json_atomically(run / "analysis.json", analysis);
   ASSERT_EQ(run_rupture("report " + shell_quoted(run)).exit_code, 0);
@@ -270,8 +270,10 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
   EXPECT_THAT(cut,
               HasSubstr("its intervals are not calibrated: the curve ends in a collapse too sharp for the "
                         "filter (from 0.4194 %)"));
-  EXPECT_THAT(cut, HasSubstr("where delta_x's intervals are calibrated only on white noise with the collapse "
-                             "10 % of x_c or more past the force peak"));
+  EXPECT_THAT(cut,
+              HasSubstr("where delta_x's intervals are calibrated only on a random walk with the collapse "
+                        "10 % of x_c or more past the force peak, and not where the noise model read a "
+                        "ringing"));
   EXPECT_THAT(cut, Not(HasSubstr("white factors were checked")));
   analysis["collapse_onset"] = nullptr;
   io::write_json_atomically(run / "analysis.json", analysis);
