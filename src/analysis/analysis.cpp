@@ -1045,14 +1045,13 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
   std::vector<std::string> status;
   if (!calibrated.empty())
     status.push_back(
-        fmt::format("calibrated{} (their cell passed {})",
+        fmt::format("calibrated{} (their cells passed {})",
                     withdrawn.empty() && failed.empty() ? std::string() : " for " + listed(calibrated),
                     collapse_factors_checked_on));
   if (!withdrawn.empty())
     status.push_back(fmt::format(
-        "not calibrated here for {}, although their cell passed {}: another warning says why (a ringing, "
-        "the smoothing floor), or the curve's white noise lies below the level from which the white factors "
-        "were checked",
+        "not calibrated here for {}, although their cells passed {}: another warning says why (a ringing, "
+        "the smoothing floor, a white noise below the levels from which the white factors were checked)",
         listed(withdrawn), collapse_factors_checked_on));
   if (!failed.empty())
     status.push_back(fmt::format("not calibrated for {}: {}", listed(failed), collapse_check_shortfall));
@@ -1225,6 +1224,16 @@ void classify_mechanism(const Grid& g, const BreakLog& breaks, const MechanismRu
 }
 
 }  // namespace
+
+std::string calibrated_collapse_cells(const CollapseIntervalScales& cells) {
+  std::vector<std::string> passed;
+  for (const bool walk : {true, false})
+    for (const bool near : {false, true})
+      if (cells.for_curve(walk, near).calibrated)
+        passed.push_back(fmt::format("{} with a {} collapse", walk ? "a random walk" : "white noise",
+                                     near ? "near" : "far"));
+  return passed.empty() ? std::string("no kind of noise") : listed(passed);
+}
 
 AnalysisResult analyze_curve(const Curve& curve, AnalysisOptions options, const BreakLog& breaks) {
   AnalysisResult r;

@@ -246,10 +246,12 @@ std::string uncalibrated_because(const json& analysis) {
   if (const auto onset = analysis.find("collapse_onset"); onset != analysis.end() && onset->is_object()) {
     return fmt::format(
         "; its intervals are not calibrated: the curve ends in a collapse too sharp for the filter (from "
-        "{} {}), filtered apart from the loading, where delta_x's intervals are calibrated only on a random "
-        "walk with the collapse 10 % of x_c or more past the force peak, and not where the noise model read "
-        "a ringing (docs/analysis.md)",
-        number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")));
+        "{} {}), filtered apart from the loading, where delta_x's intervals are calibrated only on {} (far: "
+        "{:g} % of x_c or more past the force peak), and not where the noise model read a ringing "
+        "(docs/analysis.md)",
+        number_text(onset->at("value").get<double>()), io::escape_markup(onset->value("unit", "")),
+        analysis::calibrated_collapse_cells(analysis::collapse_delta_scales),
+        100.0 * analysis::collapse_near_closeness);
   }
   return "; its intervals are not calibrated";
 }

@@ -1346,10 +1346,10 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
 
 // A curve cut by a collapse takes the collapse tables' factors (collapse_delta_scales and the strain
 // ones) by its noise kind and by how close the collapse comes to the force peak: near at 1.05 x_c, far
-// at 1.2 x_c; each interval is the bootstrap's own stretched by them, calibrated in the white far cell
-// only (the cells that passed held-out 37). Under the corner form, which the factors were not learned with,
-// with the bootstrap's own asked for, or on a walk without its step profile, the intervals are the
-// bootstrap's own, not calibrated, and the warning says which.
+// at 1.2 x_c; each interval is the bootstrap's own stretched by them, calibrated in the cells that passed
+// held-out 38 (δ_x's and x_p's far walk cells, x_c's white far cell). Under the corner form, which the
+// factors were not learned with, with the bootstrap's own asked for, or on a walk without its step profile,
+// the intervals are the bootstrap's own, not calibrated, and the warning says which.
 TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
   // The cells written out here, not through CollapseIntervalScales::for_curve, so a swap there shows.
   const auto cell = [](const CollapseIntervalScales& table, bool walk, bool near) {
@@ -1413,12 +1413,13 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_TRUE(warns(r, near ? "x_c after x_c: near" : "x_c after x_c: far")) << which;
       EXPECT_TRUE(warns(r, "take the factors of such curves")) << which;
       const std::string status =
-          far_walk
-              ? fmt::format("calibrated for x_p and delta_x (their cell passed {}); not calibrated for x_c: ",
-                            collapse_factors_checked_on)
+          far_walk ? fmt::format(
+                         "calibrated for x_p and delta_x (their cells passed {}); not calibrated for x_c: ",
+                         collapse_factors_checked_on)
           : far_white
-              ? fmt::format("calibrated for x_c (their cell passed {}); not calibrated for x_p and delta_x: ",
-                            collapse_factors_checked_on)
+              ? fmt::format(
+                    "calibrated for x_c (their cells passed {}); not calibrated for x_p and delta_x: ",
+                    collapse_factors_checked_on)
               : std::string("not calibrated for x_c, x_p and delta_x: ");
       EXPECT_TRUE(warns(r, "how close the collapse comes (near: less than 10 % of x_c after it); " + status))
           << which << ": " << fmt::format("{}", fmt::join(r.warnings, "\n"));
@@ -1464,7 +1465,7 @@ TEST(AnalyzeCurve, ACalibratedCollapseCellLeftUncalibratedByARingingSaysSo) {
   EXPECT_FALSE(r.interval_scales.calibrated || r.x_c_interval->scales.calibrated ||
                r.x_p_interval->scales.calibrated);
   EXPECT_TRUE(warns(r, "rings"));
-  EXPECT_TRUE(warns(r, fmt::format("not calibrated here for x_c, although their cell passed {}",
+  EXPECT_TRUE(warns(r, fmt::format("not calibrated here for x_c, although their cells passed {}",
                                    collapse_factors_checked_on)));
 }
 
@@ -1481,12 +1482,11 @@ TEST(AnalyzeCurve, AnIntervalWhoseCellPassedButWhoseNoiseLevelWasNotCheckedSaysS
   EXPECT_FALSE(r.x_c_interval->scales.calibrated);
   EXPECT_EQ(r.x_c_interval->scales.level68, collapse_critical_scales.white_far.level68);
   EXPECT_FALSE(r.x_p_interval->scales.calibrated || r.interval_scales.calibrated);
-  EXPECT_TRUE(
-      warns(r, fmt::format("; not calibrated here for x_c, although their cell passed {}: another warning "
-                           "says why (a ringing, the smoothing floor), or the curve's white noise lies below "
-                           "the level from which the white factors were checked; not calibrated for x_p and "
-                           "delta_x: on curves",
-                           collapse_factors_checked_on)))
+  EXPECT_TRUE(warns(
+      r, fmt::format("; not calibrated here for x_c, although their cells passed {}: another warning "
+                     "says why (a ringing, the smoothing floor, a white noise below the levels from which "
+                     "the white factors were checked); not calibrated for x_p and delta_x: on curves",
+                     collapse_factors_checked_on)))
       << fmt::format("{}", fmt::join(r.warnings, "\n"));
 }
 

@@ -271,9 +271,9 @@ TEST(Report, AnUncalibratedIntervalSaysWhenItsNoiseLiesBelowTheCheckedLevels) {
               HasSubstr("its intervals are not calibrated: the curve ends in a collapse too sharp for the "
                         "filter (from 0.4194 %)"));
   EXPECT_THAT(cut,
-              HasSubstr("where delta_x's intervals are calibrated only on a random walk with the collapse "
-                        "10 % of x_c or more past the force peak, and not where the noise model read a "
-                        "ringing"));
+              HasSubstr("where delta_x's intervals are calibrated only on a random walk with a far collapse "
+                        "(far: 10 % of x_c or more past the force peak), and not where the noise model read "
+                        "a ringing"));
   EXPECT_THAT(cut, Not(HasSubstr("white factors were checked")));
   analysis["collapse_onset"] = nullptr;
   io::write_json_atomically(run / "analysis.json", analysis);
