@@ -1009,16 +1009,6 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (had_learned_factors) r.warnings.push_back(std::move(why));
 }
 
-// "a", "a and b", "a, b and c".
-std::string listed(const std::vector<std::string>& names) {
-  std::string text;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) text += i + 1 == names.size() ? " and " : ", ";
-    text += names[i];
-  }
-  return text;
-}
-
 // The warning of a record cut by a sharp collapse: where the collapse lies, and whether its intervals
 // took the factors of such curves (`cut_factors`, takes_collapse_factors) or are the bootstrap's own,
 // and which of them are calibrated (read after every other mark: a ringing one says not).

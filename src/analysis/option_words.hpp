@@ -57,15 +57,22 @@ std::vector<std::string> word_list(const std::array<OptionWord<Value>, N>& words
   return list;
 }
 
+// Items in prose: "a", "a and b", "a, b and c" (`last` the joint before the last item).
+inline std::string listed(const std::vector<std::string>& items, std::string_view last = " and ") {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) text += i + 1 == items.size() ? std::string(last) : std::string(", ");
+    text += items[i];
+  }
+  return text;
+}
+
 // The table's words for an error's fix: "\"smooth\" or \"corner\"".
 template <class Value, std::size_t N>
 std::string quoted_words(const std::array<OptionWord<Value>, N>& words) {
-  std::string text;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (i > 0) text += i + 1 == N ? " or " : ", ";
-    text += "\"" + std::string(words[i].word) + "\"";
-  }
-  return text;
+  std::vector<std::string> quoted;
+  for (const auto& w : words) quoted.push_back("\"" + std::string(w.word) + "\"");
+  return listed(quoted, " or ");
 }
 
 }  // namespace rupture::analysis

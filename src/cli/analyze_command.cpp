@@ -158,10 +158,9 @@ void add_curve_column_options(CLI::App& cmd, analysis::ColumnChoice& columns) {
            columns.rows = analysis::from_word(analysis::row_kind_words, word);
          },
          "What a row holds: instants, or interval-means (each row the mean over its interval, as rupture "
-         "run's "
-         "*_mean columns, or LAMMPS fix ave/time with Nevery x Nrepeat = Nfreq, write them; the noise model "
-         "reads a walk on them by its own "
-         "term). Default: interval-means where a run's *_mean columns are read, else instants")
+         "run's *_mean columns, or LAMMPS fix ave/time with Nevery x Nrepeat = Nfreq, write them; the noise "
+         "model reads a walk on them by its own term). Default: interval-means where a run's *_mean columns "
+         "are read, else instants")
       ->check(CLI::IsMember(analysis::word_list(analysis::row_kind_words)));
 }
 
