@@ -1009,25 +1009,23 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
   if (had_learned_factors) r.warnings.push_back(std::move(why));
 }
 
-// The warning of a record cut by a sharp collapse: where the collapse lies, and whether its intervals
-// took the factors of such curves (`cut_factors`, takes_collapse_factors) or are the bootstrap's own,
-// and which of them are calibrated (read after every other mark: a ringing one says not).
-std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
-  const auto closeness = collapse_closeness(r);
-  const std::string where =
-      closeness
-          ? fmt::format(", {:.3g} % of x_c {} x_c: {}", 100.0 * std::abs(*closeness),
-                        *closeness < 0.0 ? "before" : "after", is_near_collapse(*closeness) ? "near" : "far")
-          : std::string();
-  // δ_x's factors apply to the fitted maxima only (the l1 shift's interval is its posterior).
-  const bool delta_scaled = r.delay_method == DelayMethod::fitted_maxima;
-  // Each interval: calibrated; not here, although its cell passed the check (another mark took it away,
-  // or its white level lies below the checked ones); or not, its cell having failed.
-  std::vector<std::string> calibrated, withdrawn, failed;
+// Which intervals of a record cut by a sharp collapse, sized by the factors of its cell (`closeness` and
+// its noise kind), are calibrated; which are not here although their cell passed its check (another mark
+// took it away, or its white level lies below the checked ones); and which are not, their cell having
+// failed, with what that cell fell short by. Read after every other mark: a ringing one says not.
+std::string collapse_interval_status(const AnalysisResult& r, double closeness, bool delta_scaled) {
+  const bool walk = scored_as_random_walk(r), near = is_near_collapse(closeness);
+  std::vector<std::string> calibrated, withdrawn, failed, shortfalls;
   const auto sort = [&](const char* name, bool is_calibrated, const CollapseIntervalScales& cells) {
-    const bool cell_passed =
-        closeness && cells.for_curve(scored_as_random_walk(r), is_near_collapse(*closeness)).calibrated;
-    (is_calibrated ? calibrated : cell_passed ? withdrawn : failed).emplace_back(name);
+    const IntervalScales& cell = cells.for_curve(walk, near);
+    if (is_calibrated) {
+      calibrated.emplace_back(name);
+    } else if (cell.calibrated) {
+      withdrawn.emplace_back(name);
+    } else {
+      failed.emplace_back(name);
+      if (!cell.shortfall.empty()) shortfalls.push_back(fmt::format("for {}, {}", name, cell.shortfall));
+    }
   };
   sort("x_c", r.x_c_interval && r.x_c_interval->scales.calibrated, collapse_critical_scales);
   sort("x_p", r.x_p_interval && r.x_p_interval->scales.calibrated, collapse_precursor_scales);
@@ -1044,13 +1042,35 @@ std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
         "the smoothing floor, a white noise below the levels from which the white factors were checked)",
         listed(withdrawn), collapse_factors_checked_on));
   if (!failed.empty())
-    status.push_back(fmt::format("not calibrated for {}: {}", listed(failed), collapse_check_shortfall));
+    status.push_back(fmt::format(
+        "not calibrated for {}{}", listed(failed),
+        shortfalls.empty() ? std::string()
+                           : fmt::format(": in this curve's cell ({}) on curves with known answers "
+                                         "({}), {}",
+                                         collapse_cell_words(walk, near), collapse_factors_checked_on,
+                                         fmt::join(shortfalls, "; "))));
+  return fmt::format("{}", fmt::join(status, "; "));
+}
+
+// The warning of a record cut by a sharp collapse: where the collapse lies, and whether its intervals
+// took the factors of such curves (`cut_factors`, takes_collapse_factors, which needs a closeness) or
+// are the bootstrap's own, and which of them are calibrated.
+std::string collapse_warning(const AnalysisResult& r, bool cut_factors) {
+  const auto closeness = collapse_closeness(r);
+  const std::string where =
+      closeness
+          ? fmt::format(", {:.3g} % of x_c {} x_c: {}", 100.0 * std::abs(*closeness),
+                        *closeness < 0.0 ? "before" : "after", is_near_collapse(*closeness) ? "near" : "far")
+          : std::string();
+  // δ_x's factors apply to the fitted maxima only (the l1 shift's interval is its posterior).
+  const bool delta_scaled = r.delay_method == DelayMethod::fitted_maxima;
   const std::string intervals =
-      cut_factors
+      cut_factors && closeness
           ? fmt::format(
                 "the intervals of x_c, x_p{} take the factors of such curves by how close the collapse "
                 "comes (near: less than {:g} % of x_c after it); {}",
-                delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness, fmt::join(status, "; "))
+                delta_scaled ? " and delta_x" : "", 100.0 * collapse_near_closeness,
+                collapse_interval_status(r, *closeness, delta_scaled))
           : fmt::format(
                 "the intervals of x_c, x_p{} are the bootstrap's own, not calibrated (the factors of "
                 "such curves apply to a positive x_c under the default peak form with calibrated "
@@ -1215,13 +1235,16 @@ void classify_mechanism(const Grid& g, const BreakLog& breaks, const MechanismRu
 
 }  // namespace
 
+std::string collapse_cell_words(bool random_walk, bool near) {
+  return fmt::format("{} with a {} collapse", random_walk ? "a random walk" : "white noise",
+                     near ? "near" : "far");
+}
+
 std::string calibrated_collapse_cells(const CollapseIntervalScales& cells) {
   std::vector<std::string> passed;
   for (const bool walk : {true, false})
     for (const bool near : {false, true})
-      if (cells.for_curve(walk, near).calibrated)
-        passed.push_back(fmt::format("{} with a {} collapse", walk ? "a random walk" : "white noise",
-                                     near ? "near" : "far"));
+      if (cells.for_curve(walk, near).calibrated) passed.push_back(collapse_cell_words(walk, near));
   return passed.empty() ? std::string("no kind of noise") : listed(passed);
 }
 

@@ -1423,6 +1423,19 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
               : std::string("not calibrated for x_c, x_p and delta_x: ");
       EXPECT_TRUE(warns(r, "how close the collapse comes (near: less than 10 % of x_c after it); " + status))
           << which << ": " << fmt::format("{}", fmt::join(r.warnings, "\n"));
+      // Each interval not calibrated says what its own cell's check found short, a calibrated one nothing.
+      const std::string cell_said = fmt::format(
+          "in this curve's cell ({} with a {} collapse) on curves with "
+          "known answers ({}), ",
+          walk ? "a random walk" : "white noise", near ? "near" : "far", collapse_factors_checked_on);
+      EXPECT_TRUE(warns(r, cell_said)) << which;
+      for (const auto& [name, scales] :
+           {std::pair{"x_c", critical}, std::pair{"x_p", precursor}, std::pair{"delta_x", delta}}) {
+        EXPECT_EQ(scales.shortfall.empty(), scales.calibrated) << which << ", " << name;
+        if (!scales.calibrated) {
+          EXPECT_TRUE(warns(r, fmt::format("for {}, {}", name, scales.shortfall))) << which << ", " << name;
+        }
+      }
       EXPECT_TRUE(warns(bootstrap, "are the bootstrap's own, not calibrated")) << which;
       // The corner form keeps the bootstrap's own; a stationary walk step does on a walk only (a white
       // curve's intervals do not use the walk's step).
@@ -1483,10 +1496,14 @@ TEST(AnalyzeCurve, AnIntervalWhoseCellPassedButWhoseNoiseLevelWasNotCheckedSaysS
   EXPECT_EQ(r.x_c_interval->scales.level68, collapse_critical_scales.white_far.level68);
   EXPECT_FALSE(r.x_p_interval->scales.calibrated || r.interval_scales.calibrated);
   EXPECT_TRUE(warns(
-      r, fmt::format("; not calibrated here for x_c, although their cells passed {}: another warning "
-                     "says why (a ringing, the smoothing floor, a white noise below the levels from which "
-                     "the white factors were checked); not calibrated for x_p and delta_x: on curves",
-                     collapse_factors_checked_on)))
+      r,
+      fmt::format("; not calibrated here for x_c, although their cells passed {}: another warning "
+                  "says why (a ringing, the smoothing floor, a white noise below the levels from which "
+                  "the white factors were checked); not calibrated for x_p and delta_x: in this curve's "
+                  "cell (white noise with a far collapse) on curves with known answers ({}), for x_p, {}; "
+                  "for delta_x, {} (docs/analysis.md",
+                  collapse_factors_checked_on, collapse_factors_checked_on,
+                  collapse_precursor_scales.white_far.shortfall, collapse_delta_scales.white_far.shortfall)))
       << fmt::format("{}", fmt::join(r.warnings, "\n"));
 }
 
