@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -328,68 +329,87 @@ py::dict resume(const std::filesystem::path& folder, const std::string& command,
 
 // ---- analysis ----------------------------------------------------------------------------------
 
+// The value a keyword's word names, or an InputError naming the keyword, the word and the words allowed
+// (`what`: what the word should have been; `or_else`: a fix beside the words, e.g. None's meaning).
+template <class Value, std::size_t N>
+Value chosen_word(const char* keyword, const py::handle& value,
+                  const std::array<analysis::OptionWord<Value>, N>& words, std::string_view what,
+                  std::string_view or_else = {}) {
+  const auto word = value.cast<std::string>();
+  const auto chosen = analysis::from_word(words, word);
+  if (!chosen)
+    throw InputError(keyword, fmt::format("'{}' is not {}", word, what),
+                     fmt::format("use {}{}", analysis::quoted_words(words), or_else));
+  return *chosen;
+}
+
 // What a row holds, from the keyword `rows` ("instants" or "interval-means"; absent or None: as the
 // columns say, analysis::ColumnChoice::rows).
 std::optional<analysis::RowKind> row_kind(const py::kwargs& given) {
   if (!given.contains("rows") || given["rows"].is_none()) return std::nullopt;
-  const auto word = given["rows"].cast<std::string>();
-  const auto chosen = analysis::from_word(analysis::row_kind_words, word);
-  if (!chosen)
-    throw InputError(
-        "rows", "'" + word + "' is not what a row holds",
-        "use " + analysis::quoted_words(analysis::row_kind_words) + " (or None: as the columns say)");
-  return chosen;
+  return chosen_word("rows", given["rows"], analysis::row_kind_words, "what a row holds",
+                     " (or None: as the columns say)");
 }
 
 // rupture.analyze's options, by keyword (the package passes all seven, with its defaults; docs/python.md
-// names them). A new option is one more branch here, not one more argument down the call chain.
+// names them): each keyword's reader checks its value and sets it. A new option is one more entry here,
+// not one more argument down the call chain.
 analysis::AnalysisOptions analysis_options(const py::kwargs& given) {
+  using Reader = void (*)(const py::handle&, analysis::AnalysisOptions&);
+  static const std::map<std::string, Reader, std::less<>> readers{
+      {"rows", [](const py::handle&, analysis::AnalysisOptions&) {}},  // the curve's, not the analysis's
+      {"delay_method",
+       [](const py::handle& value, analysis::AnalysisOptions& options) {
+         options.delay_method = chosen_word("delay_method", value, analysis::delay_method_words, "a method");
+       }},
+      {"force_peak_form",
+       [](const py::handle& value, analysis::AnalysisOptions& options) {
+         options.force_peak_form =
+             chosen_word("force_peak_form", value, analysis::peak_form_words, "a form of the force's peak");
+       }},
+      {"replicates",
+       [](const py::handle& value, analysis::AnalysisOptions& options) {
+         const auto replicates = value.cast<long long>();
+         if (replicates != 0 &&
+             (replicates < analysis::min_replicates || replicates > analysis::max_replicates))
+           throw InputError(
+               "replicates", fmt::format("{} replicates", replicates),
+               fmt::format("give 0 (the default {}) or {} to {}", analysis::BootstrapOptions{}.replicates,
+                           analysis::min_replicates, analysis::max_replicates));
+         if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
+       }},
+      {"seed",
+       [](const py::handle& value, analysis::AnalysisOptions& options) {
+         const auto seed = value.cast<long long>();
+         if (seed < 0) throw InputError("seed", fmt::format("{} is negative", seed), "give a seed >= 0");
+         options.uncertainty.seed = static_cast<std::uint64_t>(seed);
+       }},
+      {"walk_profile",
+       [](const py::handle& value, analysis::AnalysisOptions& options) {
+         options.uncertainty.walk_profile = value.cast<bool>();
+       }},
+      {"smoothing_floor",
+       [](const py::handle& value, analysis::AnalysisOptions& options) {
+         const auto share = value.cast<double>();
+         if (!(share >= 0.0 && share <= analysis::max_smoothing_floor_share))
+           throw InputError("smoothing_floor",
+                            fmt::format("{} is not a share of the rise to the force peak", share),
+                            fmt::format("give a value in [0, {:g}] (0: the noise alone chooses the filter)",
+                                        analysis::max_smoothing_floor_share));
+         options.smoothing_floor_share = share;
+       }},
+  };
   analysis::AnalysisOptions options;
   for (const auto& [key, value] : given) {
     const auto name = key.cast<std::string>();
-    if (name == "rows") {
-      continue;  // the curve's, not the analysis's (row_kind)
-    } else if (name == "delay_method") {
-      const auto method = value.cast<std::string>();
-      const auto chosen = analysis::from_word(analysis::delay_method_words, method);
-      if (!chosen)
-        throw InputError("delay_method", "'" + method + "' is not a method",
-                         "use " + analysis::quoted_words(analysis::delay_method_words));
-      options.delay_method = *chosen;
-    } else if (name == "replicates") {
-      const auto replicates = value.cast<long long>();
-      if (replicates != 0 && (replicates < analysis::min_replicates || replicates > analysis::max_replicates))
-        throw InputError(
-            "replicates", fmt::format("{} replicates", replicates),
-            fmt::format("give 0 (the default {}) or {} to {}", analysis::BootstrapOptions{}.replicates,
-                        analysis::min_replicates, analysis::max_replicates));
-      if (replicates > 0) options.uncertainty.replicates = static_cast<int>(replicates);
-    } else if (name == "seed") {
-      const auto seed = value.cast<long long>();
-      if (seed < 0) throw InputError("seed", fmt::format("{} is negative", seed), "give a seed >= 0");
-      options.uncertainty.seed = static_cast<std::uint64_t>(seed);
-    } else if (name == "walk_profile") {
-      options.uncertainty.walk_profile = value.cast<bool>();
-    } else if (name == "force_peak_form") {
-      const auto form = value.cast<std::string>();
-      const auto chosen = analysis::from_word(analysis::peak_form_words, form);
-      if (!chosen)
-        throw InputError("force_peak_form", "'" + form + "' is not a form of the force's peak",
-                         "use " + analysis::quoted_words(analysis::peak_form_words));
-      options.force_peak_form = *chosen;
-    } else if (name == "smoothing_floor") {
-      const auto share = value.cast<double>();
-      if (!(share >= 0.0 && share <= analysis::max_smoothing_floor_share))
-        throw InputError("smoothing_floor",
-                         fmt::format("{} is not a share of the rise to the force peak", share),
-                         fmt::format("give a value in [0, {:g}] (0: the noise alone chooses the filter)",
-                                     analysis::max_smoothing_floor_share));
-      options.smoothing_floor_share = share;
-    } else {
-      throw InputError(
-          "analyze", "'" + name + "' is not an option",
-          "use delay_method, replicates, seed, walk_profile, force_peak_form, smoothing_floor or rows");
+    const auto reader = readers.find(name);
+    if (reader == readers.end()) {
+      std::vector<std::string> names;
+      for (const auto& [known, unused] : readers) names.push_back(known);
+      throw InputError("analyze", "'" + name + "' is not an option",
+                       "use " + analysis::listed(names, " or "));
     }
+    reader->second(value, options);
   }
   return options;
 }

@@ -277,8 +277,14 @@ def test_analyze_smoothing_floor_matches_the_command_line(tmp_path):
         rupture.analyze(curve, replicates=-5)
     with pytest.raises(rupture.InputError, match="seed.*give a seed >= 0"):
         rupture.analyze(curve, seed=-1)
+    with pytest.raises(rupture.InputError, match="'fitted' is not a method.*use \"fitted-maxima\" or \"shift-l1\""):
+        rupture.analyze(curve, delay_method="fitted")
+    with pytest.raises(rupture.InputError,
+                       match="'round' is not a form of the force's peak.*use \"smooth\" or \"corner\""):
+        rupture.analyze(curve, force_peak_form="round")
     # the core takes the options by keyword and refuses one it does not know (package and core out of step)
-    with pytest.raises(rupture.InputError, match="'smoothing' is not an option.*use delay_method"):
+    with pytest.raises(rupture.InputError, match="'smoothing' is not an option.*use delay_method, force_peak_form, "
+                       "replicates, rows, seed, smoothing_floor or walk_profile"):
         rupture._rupture.analyze_file(str(curve), smoothing=0.25)
 
 
