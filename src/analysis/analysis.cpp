@@ -1012,7 +1012,8 @@ void mark_intervals_uncalibrated(AnalysisResult& r, std::string why) {
 // Which intervals of a record cut by a sharp collapse, sized by the factors of its cell (`closeness` and
 // its noise kind), are calibrated; which are not here although their cell passed its check (another mark
 // took it away, or its white level lies below the checked ones); and which are not, their cell having
-// failed, with what that cell fell short by. Read after every other mark: a ringing one says not.
+// failed, with what that cell fell short by in brackets (said last: the brackets hold the shortfalls'
+// own "; "). Read after every other mark: a ringing one says not.
 std::string collapse_interval_status(const AnalysisResult& r, double closeness, bool delta_scaled) {
   const bool walk = scored_as_random_walk(r), near = is_near_collapse(closeness);
   std::vector<std::string> calibrated, withdrawn, failed, shortfalls;
@@ -1024,7 +1025,7 @@ std::string collapse_interval_status(const AnalysisResult& r, double closeness, 
       withdrawn.emplace_back(name);
     } else {
       failed.emplace_back(name);
-      if (!cell.shortfall.empty()) shortfalls.push_back(fmt::format("for {}, {}", name, cell.shortfall));
+      if (!cell.shortfall.empty()) shortfalls.push_back(fmt::format("{}: {}", name, cell.shortfall));
     }
   };
   sort("x_c", r.x_c_interval && r.x_c_interval->scales.calibrated, collapse_critical_scales);
@@ -1045,9 +1046,9 @@ std::string collapse_interval_status(const AnalysisResult& r, double closeness, 
     status.push_back(fmt::format(
         "not calibrated for {}{}", listed(failed),
         shortfalls.empty() ? std::string()
-                           : fmt::format(": in this curve's cell ({}) on curves with known answers "
-                                         "({}), {}",
-                                         collapse_cell_words(walk, near), collapse_factors_checked_on,
+                           : fmt::format(" [on {}'s curves with known answers in this curve's cell ({}), "
+                                         "{}]",
+                                         collapse_factors_checked_on, collapse_cell_words(walk, near),
                                          fmt::join(shortfalls, "; "))));
   return fmt::format("{}", fmt::join(status, "; "));
 }

@@ -1414,28 +1414,29 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_TRUE(warns(r, "take the factors of such curves")) << which;
       const std::string status =
           far_walk ? fmt::format(
-                         "calibrated for x_p and delta_x (their cells passed {}); not calibrated for x_c: ",
+                         "calibrated for x_p and delta_x (their cells passed {}); not calibrated for x_c [",
                          collapse_factors_checked_on)
           : far_white
               ? fmt::format(
-                    "calibrated for x_c (their cells passed {}); not calibrated for x_p and delta_x: ",
+                    "calibrated for x_c (their cells passed {}); not calibrated for x_p and delta_x [",
                     collapse_factors_checked_on)
-              : std::string("not calibrated for x_c, x_p and delta_x: ");
+              : std::string("not calibrated for x_c, x_p and delta_x [");
       EXPECT_TRUE(warns(r, "how close the collapse comes (near: less than 10 % of x_c after it); " + status))
           << which << ": " << fmt::format("{}", fmt::join(r.warnings, "\n"));
-      // Each interval not calibrated says what its own cell's check found short, a calibrated one nothing.
-      const std::string cell_said = fmt::format(
-          "in this curve's cell ({} with a {} collapse) on curves with "
-          "known answers ({}), ",
-          walk ? "a random walk" : "white noise", near ? "near" : "far", collapse_factors_checked_on);
-      EXPECT_TRUE(warns(r, cell_said)) << which;
+      // Each interval not calibrated says what its own cell's check found short, in x_c, x_p, δ_x order
+      // inside one bracket that ends the status; a calibrated one says nothing there.
+      std::vector<std::string> shortfalls;
       for (const auto& [name, scales] :
            {std::pair{"x_c", critical}, std::pair{"x_p", precursor}, std::pair{"delta_x", delta}}) {
         EXPECT_EQ(scales.shortfall.empty(), scales.calibrated) << which << ", " << name;
-        if (!scales.calibrated) {
-          EXPECT_TRUE(warns(r, fmt::format("for {}, {}", name, scales.shortfall))) << which << ", " << name;
-        }
+        if (!scales.calibrated) shortfalls.push_back(fmt::format("{}: {}", name, scales.shortfall));
       }
+      EXPECT_TRUE(
+          warns(r, fmt::format("[on {}'s curves with known answers in this curve's cell ({} with a {} "
+                               "collapse), {}] (docs/analysis.md",
+                               collapse_factors_checked_on, walk ? "a random walk" : "white noise",
+                               near ? "near" : "far", fmt::join(shortfalls, "; "))))
+          << which << ": " << fmt::format("{}", fmt::join(r.warnings, "\n"));
       EXPECT_TRUE(warns(bootstrap, "are the bootstrap's own, not calibrated")) << which;
       // The corner form keeps the bootstrap's own; a stationary walk step does on a walk only (a white
       // curve's intervals do not use the walk's step).
@@ -1499,9 +1500,9 @@ TEST(AnalyzeCurve, AnIntervalWhoseCellPassedButWhoseNoiseLevelWasNotCheckedSaysS
       r,
       fmt::format("; not calibrated here for x_c, although their cells passed {}: another warning "
                   "says why (a ringing, the smoothing floor, a white noise below the levels from which "
-                  "the white factors were checked); not calibrated for x_p and delta_x: in this curve's "
-                  "cell (white noise with a far collapse) on curves with known answers ({}), for x_p, {}; "
-                  "for delta_x, {} (docs/analysis.md",
+                  "the white factors were checked); not calibrated for x_p and delta_x [on {}'s curves "
+                  "with known answers in this curve's cell (white noise with a far collapse), x_p: {}; "
+                  "delta_x: {}] (docs/analysis.md",
                   collapse_factors_checked_on, collapse_factors_checked_on,
                   collapse_precursor_scales.white_far.shortfall, collapse_delta_scales.white_far.shortfall)))
       << fmt::format("{}", fmt::join(r.warnings, "\n"));
