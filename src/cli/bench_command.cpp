@@ -139,7 +139,7 @@ nlohmann::json bench_run(const BenchOptions& options, int threads) {
     }
   } remove_at_exit{folder};
   loading::RunOptions run_options;
-  run_options.echo_monitor = false;
+  run_options.echo_warnings = false;
   const double cpu_start = process_cpu_seconds();
   const loading::RunSummary summary =
       loading::run_simulation(config, sample, folder, "rupture bench --run " + options.run, run_options);

@@ -277,6 +277,9 @@ class TensionRun {
                                          .checkpoint_state_bytes = system_.state_bytes()});
     write_first_record();
     if (resume_ == nullptr) open_new_files();
+    // Said once, as the run begins (a resume continues a plan already said and kept in run.json).
+    if (resume_ == nullptr && options_.echo_warnings)
+      for (const auto& w : plan_.warnings) fmt::print(stderr, "warning: {}\n", w);
     summary_.max_energy_error = loop_.max_energy_error;
     summary_.max_relative_energy_error = loop_.max_relative_energy_error;
     try {
@@ -505,7 +508,7 @@ class TensionRun {
 
   void feed_monitor(double elastic_energy) {
     const auto warning = monitor_.add_point(strain_now(), system_.force_top(), elastic_energy);
-    if (!warning || !options_.echo_monitor) return;
+    if (!warning || !options_.echo_warnings) return;
     fmt::print(
         "monitor: warning at strain {:.4g} %: energy-rate maximum passed (x_p = {:.4g} %) while the force "
         "still rises; predicted x_c in [{:.4g}, {:.4g}] %\n",

@@ -83,9 +83,10 @@ struct RunProgress {
 
 struct RunOptions {
   Existing existing = Existing::refuse;
-  // The on-line monitor's warning is printed on stdout as it comes unless false (a scan runs points
-  // side by side and reports each in a line of its own); run.json records it either way.
-  bool echo_monitor = true;
+  // The plan's warnings (a ramp too short, a plate too fast: what `rupture check` says) on stderr as
+  // a new run starts, and the on-line monitor's warning on stdout as it comes, unless false (a scan runs
+  // points side by side and reports each in a line of its own); run.json records both either way.
+  bool echo_warnings = true;
   // Called after each curve row; returning false stops the run as SIGINT would (a checkpoint, then
   // status "interrupted"). For callers that run simulations inside another program (the Python
   // module), where the signal handlers belong to that program.
@@ -114,7 +115,7 @@ RunSummary run_simulation(const RunConfig& config, const Sample& sample, const s
 // InputError, the folder untouched, when another process writes it, there is no readable
 // checkpoint, the run already ended, the sample changed since the run began, or curves.csv or
 // breaks.csv no longer begin with what the checkpoint recorded (their length and hash).
-// `options.on_row` and `echo_monitor` apply as in run_simulation (`existing` does not).
+// `options.on_row` and `echo_warnings` apply as in run_simulation (`existing` does not).
 RunSummary resume_simulation(const std::filesystem::path& folder, const std::string& command,
                              const RunOptions& options = {});
 

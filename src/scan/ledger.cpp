@@ -189,7 +189,7 @@ std::optional<nlohmann::json> run_point(const Plan& plan, const Point& point, co
     row["broken_bonds"] = summary.broken_bonds;
   };
   try {
-    const auto summary = loading::run_simulation(config, sample, attempt, command, {.echo_monitor = false});
+    const auto summary = loading::run_simulation(config, sample, attempt, command, {.echo_warnings = false});
     record_run(summary);
     const bool separated = summary.stop_reason == "separated";
     status = separated ? status::ok : status::no_separation;

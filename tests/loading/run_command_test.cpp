@@ -94,6 +94,24 @@ TEST(RunCommand, UnstableRunStopsWithDiagnosisAndKeepsOutputs) {
   EXPECT_GE(io::read_csv(dir / "out" / "curves.csv").rows(), 1u);
 }
 
+// What `rupture check` warns of is said by `rupture run` too, on stderr as the run starts, and kept in
+// run.json's plan.
+TEST(RunCommand, RunSaysThePlansWarningsAsItStarts) {
+  TempDir dir;
+  const std::string ramp_warning = "a ramp shorter than 1000 steps sends a shock through the sample";
+  const auto r = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "out") +
+                             " --set loading.ramp_steps=500 --set stop.max_steps=50");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("warning: " + ramp_warning));
+  const auto report = nlohmann::json::parse(slurp(dir / "out" / "run.json"));
+  ASSERT_EQ(report["plan"]["warnings"].size(), 1u);
+  EXPECT_THAT(report["plan"]["warnings"][0].get<std::string>(), HasSubstr(ramp_warning));
+  const auto quiet = run_rupture("run '" + examples + "block.toml' -o " + quoted(dir / "quiet") +
+                                 " --set loading.ramp_steps=1000 --set stop.max_steps=50");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_THAT(quiet.err, ::testing::Not(HasSubstr("warning:")));
+}
+
 // The regular block runs to separation in well under a second (also under the sanitizers).
 TEST(RunCommand, BlockRunsToSeparationWithBalancedEnergy) {
   TempDir dir;
