@@ -234,16 +234,13 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
 // (those under 20 curves pooled) more than 2 binomial sd below nominal; a cell that fails keeps its
 // factors, not calibrated, where they bring its coverage nearer nominal at both levels than the
 // bootstrap's own, else factor 1. Passed: δ_x's and x_p's far walk cells (71.2 / 96.5 %, 68.9 / 96.2 %)
-// and x_c's white far cell (68.1 / 95.4 %). Failed, their factors kept, not calibrated: δ_x's and x_c's
-// near walk cells through finite bundles cut within 2 % past their peak (brittle-close; x_c comes early
-// there, a bias no factor mends: δ_x 36 %, x_c 29 % at 68 %), x_c's also through dem-like rows every 100
-// steps (52-55 %) and its pooled 73.6 %; x_p's near walk cell through dem-like samples every 400 steps
-// (89 % at 95 %); x_c's far walk cell through run-like means every 400 steps (41 %); δ_x's and x_p's white
-// far cells, which passed held-out 37, through their few groups under 20 curves pooled (30 curves; δ_x 15
-// covered at 68 %, 16 needed, and 25 at 95 %, 27 needed; x_p 26 at 95 %, 27 needed); δ_x's and x_c's white
-// near cells through brittle-close groups; x_p's white near cell through dem-like means every 400 steps and
-// small pooled groups (its candidate's 40 % and 36 % at 68 %; the bootstrap's own 44 % and 57 %), where
-// the candidate was not nearer nominal at 95 % than the bootstrap's own: factor 1.
+// and x_c's white far cell (68.1 / 95.4 %). Each failed cell says what fell short in its `shortfall`
+// below. Four of the nine fail through finite bundles cut within 2 % past their peak (brittle-close),
+// where x_c comes early, a bias no factor mends; δ_x's and x_p's white far cells through small pooled
+// groups; x_p's near walk and white near cells through dem-like rows every 400 steps; x_c's far walk cell
+// through run-like means every 400 steps, where F's walk is read as zero on 39 % of them (docs/analysis.md,
+// "x_c on run-like means every 400 steps"). x_p's white near cell ships factor 1, its candidate not nearer
+// nominal at 95 % than the bootstrap's own.
 // The check the cells below last faced, as the collapse warning cites it: its name and its section in
 // docs/analysis.md (what fell short in a cell that failed it is the cell's own shortfall).
 inline constexpr std::string_view collapse_factors_checked_on = "held-out 38";
