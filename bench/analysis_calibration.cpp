@@ -3,7 +3,7 @@
 // 1000 and 5000 rows, analysed with default options but the bootstrap's own (unscaled) δ_x
 // intervals; prints how often the 68 % and 95 % intervals of δ_x, x_c and x_p cover the truth, δ_x's
 // mean relative error and its rms error beside the paper's l1 shift inversion.
-// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-38|all]
+// Usage: analysis_calibration [curves per group = 200] [tuning|held-out|held-out-2|...|held-out-39|all]
 // [per-curve CSV] [all|white|bundle|mixed|white-between|white-low|white-low-between|brittle|brittle-close:
 // the noise groups, default all; mixed: bundles whose F also carries white noise, as DEM curves do;
 // white-between: white noise at 0.5 and 2 %; white-low: at 0.06 and 0.1 %; white-low-between: at 0.08 and
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   if (chosen.empty()) {
     std::fprintf(stderr,
                  "analysis_calibration: unknown set '%s'; name one of tuning, held-out, held-out-2 ... "
-                 "held-out-38, all\n",
+                 "held-out-39, all\n",
                  which.c_str());
     return 2;
   }

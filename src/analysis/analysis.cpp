@@ -1141,11 +1141,12 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
       *r.x_c, factors(critical_scales(r, walk_profile), collapse_critical_scales, critical_noise_level(r)));
   if (force_walk_hidden(r) && r.x_c_interval->scales.calibrated) {
     r.x_c_interval->scales.calibrated = false;
-    r.warnings.emplace_back(
+    r.warnings.push_back(fmt::format(
         "the noise model fits no random walk in F while it fits one in E_e (bootstrap window): x_c's "
-        "interval "
-        "leaves F's walk out and is not calibrated (it covered 24-50 % at 68 % on such curves with known "
-        "answers; docs/analysis.md, \"Known limits\")");
+        "interval {} and is not calibrated (docs/analysis.md, \"Known limits\")",
+        r.noise_model.force.walk_from_energy
+            ? "takes F's walk from E_e's, each step F/E_e times E_e's, which no check has scored"
+            : "leaves F's walk out (it covered 24-50 % at 68 % on such curves with known answers)"));
   }
   r.x_p_interval = take_strain_interval(*r.x_p, factors(precursor_scales(r, walk_profile),
                                                         collapse_precursor_scales, precursor_noise_level(r)));

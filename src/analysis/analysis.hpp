@@ -450,12 +450,13 @@ bool reads_random_walk(const AnalysisResult& result);
 // The kind whose factors the intervals take: a random walk where the whole record reads so or the
 // curve is quiet (quiet_white_noise_share).
 bool scored_as_random_walk(const AnalysisResult& result);
-// Whether F's random walk is missing from a curve scored as a walk: its bootstrap window's noise
-// model fits no walk in F while it fits one in E_e (F's walk swamped by white noise at the structure
-// function's short lags, or too small per step to fit, as on the largest bundles at 300 rows), so the
-// replicates leave F's walk out and x_c's sd misses it. On such curves with known answers x_c's
-// scaled intervals covered 24-50 % at 68 % (docs/analysis.md, "Known limits"): x_c's interval is
-// then marked not calibrated, with a warning where it would otherwise have been.
+// Whether F's random walk is missing from what a curve scored as a walk fits: its bootstrap window's
+// noise model fits no walk in F while it fits one in E_e (F's walk swamped by white noise at the
+// structure function's short lags, or too small per step to fit, as on the largest bundles at 300
+// rows). Left out, the replicates missed it and x_c's intervals covered 24-50 % at 68 % on such curves
+// with known answers (docs/analysis.md, "Known limits"); where a walk dominates E_e's noise, F's is now
+// taken from E_e's (add_hidden_force_walk), which no check has scored yet. Either way x_c's interval
+// is marked not calibrated, with a warning where it would otherwise have been.
 bool force_walk_hidden(const AnalysisResult& result);
 // Whether the bootstrap window's noise model read a ringing curve's walk on block means
 // (NoiseComponents::ringing_block). That reading was measured on known answers that ring as a run

@@ -99,16 +99,18 @@ void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::s
 
 // Where F rings (NoiseComponents::ringing_block), the walk read on its block means is lost under
 // the ringing (0 on about half of the run-like known answers cut by a collapse) or takes a part of it
-// for a walk (up to 2.4 times the true step on a test bundle), and the replicates' walk in F, the
-// noise that survives the filter and moves x_c, is wrong by as much. The breaks that make E_e's walk
-// make F's: for a linear elastic solid held at a displacement, E_e = F u / 2 before and after each
-// break (Clapeyron), so each of F's steps is F/E_e times E_e's. Where F rings and E_e does not, F's
-// walk is taken from E_e's: its step times F/E_e (raw values over [low, high], weighted by E_e's walk
-// profile where it has one), in rms over the span, with a breaking solid's profile for F
-// (add_walk_profiles) where E_e has one. The correlation of the two walks stays the model's one
-// correlation. Too large where the span starts near zero strain or E_e has no profile (F/E_e = 2/x;
-// docs/analysis.md, "F's walk taken from E_e's where F rings", found in review). Call after
-// add_walk_profiles.
+// for a walk (up to 2.4 times the true step on a test bundle); where F carries white noise or leftover
+// ringing above its walk, the fit reads the walk as zero (on 39 % of run-like means every 400 steps
+// cut by a collapse). Either way the replicates' walk in F, the noise that survives the filter and
+// moves x_c, is wrong. The breaks that make E_e's walk make F's: for a linear elastic solid held at a
+// displacement, E_e = F u / 2 before and after each break (Clapeyron), so each of F's steps is F/E_e
+// times E_e's. Where F rings and E_e does not, or where F's walk is read as zero and a walk dominates
+// E_e's noise, F's walk is taken from E_e's: its step times F/E_e, in rms over [low, high] with each
+// sample weighted by E_e's step there from the breaks' physics (add_walk_profiles' x^4 s(x), unfloored),
+// and a breaking solid's profile for F where E_e has one. On finite bundles whose own F walk is read,
+// the mapped walk is 1.00 of it (median; quartiles 0.97-1.03; docs/analysis.md, "F's walk taken from
+// E_e's where F rings"). The correlation of the two walks stays the model's one correlation. Call
+// after add_walk_profiles.
 void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
                            std::span<const double> energy, std::size_t low, std::size_t high);
 

@@ -12,7 +12,9 @@ bool reads_random_walk(const AnalysisResult& r) { return r.force_walk || r.energ
 bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r) || r.quiet; }
 
 bool force_walk_hidden(const AnalysisResult& r) {
-  return scored_as_random_walk(r) && r.noise_model.force.walk == 0.0 && r.noise_model.energy.walk > 0.0;
+  const auto& force = r.noise_model.force;
+  const bool read_as_zero = force.walk == 0.0 || (force.walk_from_energy && force.ringing_block == 0);
+  return scored_as_random_walk(r) && read_as_zero && r.noise_model.energy.walk > 0.0;
 }
 
 bool ringing_read(const AnalysisResult& r) {
