@@ -264,9 +264,8 @@ void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, st
                            std::span<const double> energy, std::size_t low, std::size_t high) {
   assert(strain.size() == force.size() && force.size() == energy.size());
   high = std::min(high, force.size() - 1);
-  const bool rings = model.force.ringing_block != 0 && model.energy.walk > 0.0;
-  const bool read_as_zero = !(model.force.walk > 0.0) && random_walk_dominates(model.energy);
-  if (model.energy.ringing_block != 0 || !(rings || read_as_zero)) return;
+  const bool force_reading_lost = model.force.ringing_block != 0 || !(model.force.walk > 0.0);
+  if (!force_reading_lost || model.energy.ringing_block != 0 || !random_walk_dominates(model.energy)) return;
   // E_e's step at each sample relative to its rms over the span, from the breaks' physics, unfloored:
   // with the noise model's floor, the samples near zero strain, where F/E_e = 2/x has no bound, set
   // the rms (1.7-5.5 times F's own walk on finite bundles, 5000 rows the worst; 1.00 unfloored).

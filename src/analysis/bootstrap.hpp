@@ -104,8 +104,8 @@ void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::s
 // cut by a collapse). Either way the replicates' walk in F, the noise that survives the filter and
 // moves x_c, is wrong. The breaks that make E_e's walk make F's: for a linear elastic solid held at a
 // displacement, E_e = F u / 2 before and after each break (Clapeyron), so each of F's steps is F/E_e
-// times E_e's. Where F rings and E_e does not, or where F's walk is read as zero and a walk dominates
-// E_e's noise, F's walk is taken from E_e's: its step times F/E_e, in rms over [low, high] with each
+// times E_e's. Where F rings or its walk is read as zero, and a walk dominates E_e's noise (which does
+// not ring), F's walk is taken from E_e's: its step times F/E_e, in rms over [low, high] with each
 // sample weighted by E_e's step there from the breaks' physics (add_walk_profiles' x^4 s(x), unfloored),
 // and a breaking solid's profile for F where E_e has one. On finite bundles whose own F walk is read,
 // the mapped walk is 1.00 of it (median; quartiles 0.97-1.03; docs/analysis.md, "F's walk taken from
