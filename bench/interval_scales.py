@@ -6,7 +6,7 @@ Usage: interval_scales.py LEARN.csv [LEARN.csv ...] [--quantity delta_x|x_c|x_p]
                           [--skip-shape NAME ...] [--kind-column COLUMN] [--quiet-below SHARE]
                           [--white-by-level] [--white-from SHARE] [--level-from-both]
                           [--collapse-closeness EDGE] [--pool-groups-below N] [--pool-checks]
-                          [--check CHECK.csv ...]
+                          [--only COLUMN=VALUE] [--check CHECK.csv ...]
 
 The files are the per-curve output of bench/analysis_calibration. For every accepted curve and each
 level L (68 %, 95 %) the score is how far the interval's half-width on the side of the truth must be
@@ -46,6 +46,8 @@ by how close it comes").
 `--pool-groups-below 20` scores, in the rule's check of each kind, that kind's groups of fewer than 20
 accepted curves together as one group (a group of 3 fails at 95 % with a single miss, a chance of 14 %
 at exactly nominal coverage); without it every group counts alone, as in the checks up to held-out 36.
+`--only force_walk_hidden=1` learns and scores only the curves whose column has that value (e.g. the
+curves whose F walk was missing from the fit; the column is written from held-out 39's mixed groups on).
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -67,6 +69,7 @@ WHITE_FROM = None  # set by --white-from
 LEVEL_FROM_BOTH = False  # set by --level-from-both
 COLLAPSE_EDGE = None  # set by --collapse-closeness
 POOL_GROUPS_BELOW = 0  # set by --pool-groups-below
+ONLY = None  # (column, value), set by --only
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -109,6 +112,11 @@ def read(paths, skipped=()):
                         sys.exit(f"{path}: no column collapse_onset; --collapse-closeness needs files from "
                                  "held-out-27-brittle on")
                     kept = [r for r in kept if collapse_closeness(r) is not None]
+                if ONLY is not None:
+                    column, value = ONLY
+                    if column not in (table.fieldnames or []):
+                        sys.exit(f"{path}: no column {column}; --only names a column the file has")
+                    kept = [r for r in kept if r[column] == value]
                 rows += [dict(r, source=path, noise=kind_of(r)) for r in kept]
         except OSError as e:
             sys.exit(f"{path}: cannot read it ({e.strerror}); name an existing per-curve file")
@@ -322,7 +330,7 @@ def share_argument(args, option, of_what, example):
 
 def main(argv):
     global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM, LEVEL_FROM_BOTH, COLLAPSE_EDGE
-    global POOL_GROUPS_BELOW
+    global POOL_GROUPS_BELOW, ONLY
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -357,6 +365,11 @@ def main(argv):
             if POOL_GROUPS_BELOW < 1:
                 sys.exit("interval_scales.py: --pool-groups-below needs a positive whole number of curves, "
                          "e.g. --pool-groups-below 20")
+        elif arg == "--only":
+            column, equals, value = next(args, "").partition("=")
+            if not column or not equals:
+                sys.exit("interval_scales.py: --only needs COLUMN=VALUE, e.g. --only force_walk_hidden=1")
+            ONLY = (column, value)
         elif arg == "--pool-checks":
             pool_checks = True
         elif arg == "--use":
