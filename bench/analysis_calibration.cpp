@@ -20,14 +20,14 @@
 // share of their maxima, with its white and random-walk parts (per sample and per step) apart (files before
 // held-out 22 lack the first two columns, before held-out-22-edge the other four, before the dem-like groups
 // the maxima's smoothing shifts, before held-out 34 the smoothing floor's effect, "applied", "withdrawn" or
-// empty, before held-out 39's mixed groups whether F's walk was missing from the fit, 1 or 0:
-// force_walk_hidden, last). `noise` is the kind whose factors the intervals take (scored_as_random_walk),
-// `noise_read` the kind read over the whole record (reads_random_walk; from held-out 24 on; before, `noise`
-// was that), from which bench/interval_scales.py learns the per-level interval scales (on the tuning set) and
-// checks them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed before the change it
-// checks and run once for it; docs/analysis.md, "Calibration", lists them in the order they were used
-// (held-out 6 checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a noise-kind
-// reading, held-out 9 and 10 the energy-rate search's edge).
+// empty, before held-out 39 whether F's walk was taken from E_e's where its fit read none, 1 or 0:
+// force_walk_read_as_zero, last). `noise` is the kind whose factors the intervals take
+// (scored_as_random_walk), `noise_read` the kind read over the whole record (reads_random_walk; from held-out
+// 24 on; before, `noise` was that), from which bench/interval_scales.py learns the per-level interval scales
+// (on the tuning set) and checks them (on a held-out set). Each held-out set (calibration_set.hpp) was fixed
+// before the change it checks and run once for it; docs/analysis.md, "Calibration", lists them in the order
+// they were used (held-out 6 checks the white-noise scales, held-out 7 the random-walk ones, held-out 8 a
+// noise-kind reading, held-out 9 and 10 the energy-rate search's edge).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
                  "x_c_bias,x_p_bias,x_c_peak_fit_error,x_p_peak_fit_error,force_noise_share,"
                  "energy_noise_share,force_white_share,force_walk_share,energy_white_share,energy_walk_share,"
                  "noise_read,collapse_cut,collapse_onset,x_c_smoothing_shift,x_p_smoothing_shift,"
-                 "smoothing_floor,force_walk_hidden\n";
+                 "smoothing_floor,force_walk_read_as_zero\n";
     per_curve.precision(10);
   }
   AnalysisOptions
@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
                   << (r.smoothing_floor_applied     ? "applied"
                       : r.smoothing_floor_withdrawn ? "withdrawn"
                                                     : "")
-                  << ',' << (r.accepted && force_walk_hidden(r) ? 1 : 0) << '\n'
+                  << ',' << (r.accepted && r.noise_model.force.walk_read_as_zero ? 1 : 0) << '\n'
                   << std::flush;
       }
       if (!r.accepted || !r.delay) {

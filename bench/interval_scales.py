@@ -46,8 +46,9 @@ by how close it comes").
 `--pool-groups-below 20` scores, in the rule's check of each kind, that kind's groups of fewer than 20
 accepted curves together as one group (a group of 3 fails at 95 % with a single miss, a chance of 14 %
 at exactly nominal coverage); without it every group counts alone, as in the checks up to held-out 36.
-`--only force_walk_hidden=1` learns and scores only the curves whose column has that value (e.g. the
-curves whose F walk was missing from the fit; the column is written from held-out 39's mixed groups on).
+`--only force_walk_read_as_zero=1` learns and scores only the curves whose column has that value, in
+the learning files and the check files alike (e.g. the curves whose F walk was taken from E_e's where
+its fit read none; that column is written from held-out 39 on).
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -117,6 +118,9 @@ def read(paths, skipped=()):
                     if column not in (table.fieldnames or []):
                         sys.exit(f"{path}: no column {column}; --only names a column the file has")
                     kept = [r for r in kept if r[column] == value]
+                    if not kept:
+                        sys.exit(f"{path}: no curve with {column} = '{value}'; --only keeps the curves with "
+                                 "that value")
                 rows += [dict(r, source=path, noise=kind_of(r)) for r in kept]
         except OSError as e:
             sys.exit(f"{path}: cannot read it ({e.strerror}); name an existing per-curve file")
@@ -368,7 +372,7 @@ def main(argv):
         elif arg == "--only":
             column, equals, value = next(args, "").partition("=")
             if not column or not equals:
-                sys.exit("interval_scales.py: --only needs COLUMN=VALUE, e.g. --only force_walk_hidden=1")
+                sys.exit("interval_scales.py: --only needs COLUMN=VALUE, e.g. --only force_walk_read_as_zero=1")
             ONLY = (column, value)
         elif arg == "--pool-checks":
             pool_checks = True

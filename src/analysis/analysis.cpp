@@ -1145,7 +1145,8 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
         "the noise model fits no random walk in F while it fits one in E_e (bootstrap window): x_c's "
         "interval {} and is not calibrated (docs/analysis.md, \"Known limits\")",
         r.noise_model.force.walk_from_energy
-            ? "takes F's walk from E_e's, each step F/E_e times E_e's, which no check has scored"
+            ? "takes F's walk from E_e's, each step F/E_e times E_e's, which its factors were not checked "
+              "with,"
             : "leaves F's walk out (it covered 24-50 % at 68 % on such curves with known answers)"));
   }
   r.x_p_interval = take_strain_interval(*r.x_p, factors(precursor_scales(r, walk_profile),

@@ -455,8 +455,9 @@ bool scored_as_random_walk(const AnalysisResult& result);
 // structure function's short lags, or too small per step to fit, as on the largest bundles at 300
 // rows). Left out, the replicates missed it and x_c's intervals covered 24-50 % at 68 % on such curves
 // with known answers (docs/analysis.md, "Known limits"); where a walk dominates E_e's noise, F's is now
-// taken from E_e's (add_hidden_force_walk), which no check has scored yet. Either way x_c's interval
-// is marked not calibrated, with a warning where it would otherwise have been.
+// taken from E_e's (add_hidden_force_walk), which the factors of curves not cut by a collapse were not
+// learned or checked with (those of curves cut by one were: held-out 39). Either way x_c's interval is
+// marked not calibrated, with a warning where it would otherwise have been.
 bool force_walk_hidden(const AnalysisResult& result);
 // Whether the bootstrap window's noise model read a ringing curve's walk on block means
 // (NoiseComponents::ringing_block). That reading was measured on known answers that ring as a run

@@ -128,7 +128,8 @@ nlohmann::json uncertainty_json(const AnalysisResult& r) {
     return nlohmann::json{{"white_sd", io::quantity(c.white, unit)},
                           {"walk_step_sd", io::quantity(c.walk, unit)},
                           {"ringing_block", io::quantity(static_cast<double>(c.ringing_block), "samples")},
-                          {"walk_from_energy", c.walk_from_energy}};
+                          {"walk_from_energy", c.walk_from_energy},
+                          {"walk_read_as_zero", c.walk_read_as_zero}};
   };
   return {{"method",
            "parametric bootstrap: white + random-walk noise fitted to the residual, redrawn on the "

@@ -238,12 +238,12 @@ std::vector<double> damage_profile(std::span<const double> strain, std::span<con
   }
   if (!(mean > 0.0) || !std::isfinite(mean)) return {};
   const double least = floor == Floor::one_percent ? 0.01 * mean : 0.0;
-  double floored_mean = 0.0;
+  double mean_square = 0.0;
   for (auto& p : profile) {
     p = std::max(p, least);
-    floored_mean += p / static_cast<double>(n);
+    mean_square += p / static_cast<double>(n);
   }
-  for (auto& p : profile) p = std::sqrt(p / floored_mean);
+  for (auto& p : profile) p = std::sqrt(p / mean_square);
   return profile;
 }
 
@@ -262,7 +262,7 @@ void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::s
 
 void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
                            std::span<const double> energy, std::size_t low, std::size_t high) {
-  assert(strain.size() == force.size() && force.size() == energy.size());
+  assert(strain.size() == force.size() && force.size() == energy.size() && strain.size() >= 2);
   high = std::min(high, force.size() - 1);
   const bool force_reading_lost = model.force.ringing_block != 0 || !(model.force.walk > 0.0);
   if (!force_reading_lost || model.energy.ringing_block != 0 || !random_walk_dominates(model.energy)) return;
@@ -270,18 +270,19 @@ void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, st
   // with the noise model's floor, the samples near zero strain, where F/E_e = 2/x has no bound, set
   // the rms (1.7-5.5 times F's own walk on finite bundles, 5000 rows the worst; 1.00 unfloored).
   const auto energy_steps = damage_profile(strain, force, low, high, 2, Floor::none);
+  if (energy_steps.empty()) return;
   double squares = 0.0;
   std::size_t counted = 0;
   for (std::size_t i = low; i <= high; ++i) {
     if (!(energy[i] > 0.0)) continue;
-    const double relative = energy_steps.empty() ? 1.0 : energy_steps[i - low];
-    const double step = relative * force[i] / energy[i];
+    const double step = energy_steps[i - low] * force[i] / energy[i];
     squares += step * step;
     ++counted;
   }
   if (counted == 0) return;
   model.force.walk = model.energy.walk * std::sqrt(squares / static_cast<double>(counted));
   model.force.walk_from_energy = true;
+  model.force.walk_read_as_zero = model.force.ringing_block == 0;
   model.force.walk_profile =
       model.energy.walk_profile.empty() ? std::vector<double>{} : damage_profile(strain, force, low, high, 1);
 }

@@ -31,8 +31,9 @@ struct NoiseComponents {
   std::vector<double> walk_profile;  // empty: the same step everywhere
   // 0, or the samples per block mean on which a ringing curve's walk was read (estimate_noise).
   std::size_t ringing_block = 0;
-  // Whether the walk was taken from E_e's walk by the breaks' physics (add_hidden_force_walk).
-  bool walk_from_energy = false;
+  // Whether the walk was taken from E_e's walk by the breaks' physics (add_hidden_force_walk), and
+  // whether it replaced a fit that read no walk in a curve that does not ring.
+  bool walk_from_energy = false, walk_read_as_zero = false;
 };
 
 struct NoiseModel {
@@ -107,10 +108,10 @@ void add_walk_profiles(NoiseModel& model, std::span<const double> strain, std::s
 // times E_e's. Where F rings or its walk is read as zero, and a walk dominates E_e's noise (which does
 // not ring), F's walk is taken from E_e's: its step times F/E_e, in rms over [low, high] with each
 // sample weighted by E_e's step there from the breaks' physics (add_walk_profiles' x^4 s(x), unfloored),
-// and a breaking solid's profile for F where E_e has one. On finite bundles whose own F walk is read,
-// the mapped walk is 1.00 of it (median; quartiles 0.97-1.03; docs/analysis.md, "F's walk taken from
-// E_e's where F rings"). The correlation of the two walks stays the model's one correlation. Call
-// after add_walk_profiles.
+// and a breaking solid's profile for F where E_e has one; not where the stiffness never falls (no
+// breaks to carry). On finite bundles whose own F walk is read, the mapped walk is 1.00 of it (median;
+// quartiles 0.97-1.03; docs/analysis.md, "F's walk taken from E_e's with the breaks' own weights"). The
+// correlation of the two walks stays the model's one correlation. Call after add_walk_profiles.
 void add_hidden_force_walk(NoiseModel& model, std::span<const double> strain, std::span<const double> force,
                            std::span<const double> energy, std::size_t low, std::size_t high);
 

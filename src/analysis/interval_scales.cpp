@@ -13,8 +13,9 @@ bool scored_as_random_walk(const AnalysisResult& r) { return reads_random_walk(r
 
 bool force_walk_hidden(const AnalysisResult& r) {
   const auto& force = r.noise_model.force;
-  const bool read_as_zero = force.walk == 0.0 || (force.walk_from_energy && force.ringing_block == 0);
-  return scored_as_random_walk(r) && read_as_zero && r.noise_model.energy.walk > 0.0;
+  // The collapse cells were learned with F's walk taken from E_e's where it read none (held-out 39).
+  if (force.walk_read_as_zero) return !r.collapse_onset;
+  return scored_as_random_walk(r) && force.walk == 0.0 && r.noise_model.energy.walk > 0.0;
 }
 
 bool ringing_read(const AnalysisResult& r) {

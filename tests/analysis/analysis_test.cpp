@@ -930,11 +930,12 @@ TEST(NoiseModel, AWalkHiddenUnderFsRingingIsTakenFromEnergysWalk) {
 // The same bundle at 5,000 rows over a span from strain 0.001 to 0.5, its F walk read as zero (as white
 // noise on F makes it: AnalyzeCurve.AHiddenForceWalkLeavesXcNotCalibrated) while a walk dominates
 // E_e's: F's walk is taken from E_e's, each sample weighted by E_e's step there from the breaks'
-// physics, so that F's walk over E_e's is the true ratio of their rms steps (x³ p h / N against
+// physics, so that F's walk over E_e's is the true ratio of their rms steps (x² p h / N against
 // x⁴/4 p h / N per row, p = 2x) within 5 %. Near zero strain F/E_e = 2/x has no bound: weighted by the
 // noise model's floored profile instead, the ratio came out 2.2 times too large here, and F's walk
 // 1.7-5.5 times its own reading on finite bundles (5,000 rows the worst; docs/analysis.md, "F's walk
-// taken from E_e's where F rings"). E_e's own reading of this steep walk is 0.73-0.82 of its truth.
+// taken from E_e's with the breaks' own weights"). E_e's own reading of this steep walk is 0.73-0.82
+// of its truth. Where white noise dominates E_e's noise, its small walk is no reading to take F's from.
 TEST(NoiseModel, AWalkReadAsZeroIsTakenFromEnergysWalkFromStrainZeroOn) {
   const std::size_t n = 5000, low = 5, high = 2500, fibers = 100000;
   double force_square = 0.0, energy_square = 0.0;  // per row, times N / h
@@ -952,9 +953,16 @@ TEST(NoiseModel, AWalkReadAsZeroIsTakenFromEnergysWalkFromStrainZeroOn) {
     model.force.walk = 0.0;
     model.force.walk_profile.clear();
     add_hidden_force_walk(model, bundle.strain, bundle.force, bundle.energy, low, high);
-    EXPECT_TRUE(model.force.walk_from_energy);
+    EXPECT_TRUE(model.force.walk_from_energy && model.force.walk_read_as_zero);
     EXPECT_NEAR(model.force.walk / model.energy.walk, true_ratio, 0.05 * true_ratio) << "seed " << seed;
     EXPECT_EQ(model.force.walk_profile.size(), high - low + 1);
+    auto white_model = estimate_noise(bundle.force, bundle.energy, low, high);
+    white_model.energy.white = 2.0 * white_model.energy.walk;  // 6σ_w² = 24σ_r² > 2σ_r²
+    ASSERT_FALSE(random_walk_dominates(white_model.energy)) << "seed " << seed;
+    white_model.force.walk = 0.0;
+    add_hidden_force_walk(white_model, bundle.strain, bundle.force, bundle.energy, low, high);
+    EXPECT_EQ(white_model.force.walk, 0.0) << "seed " << seed;
+    EXPECT_FALSE(white_model.force.walk_from_energy || white_model.force.walk_read_as_zero);
   }
 }
 
@@ -1224,6 +1232,7 @@ TEST(CalibrationSets, HeldOutSetsAreDisjointAndFoundByName) {
   EXPECT_EQ(calibration_set("held-out-35").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-36").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-37").size(), 12u);
+  EXPECT_EQ(calibration_set("held-out-38").size(), 12u);
   EXPECT_EQ(calibration_set("held-out-39").size(), 12u);
   EXPECT_TRUE(calibration_set("held-out-40").empty());
   EXPECT_TRUE(calibration_set("").empty());
