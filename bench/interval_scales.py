@@ -48,7 +48,8 @@ accepted curves together as one group (a group of 3 fails at 95 % with a single 
 at exactly nominal coverage); without it every group counts alone, as in the checks up to held-out 36.
 `--only force_walk_read_as_zero=1` learns and scores only the curves whose column has that value, in
 the learning files and the check files alike (e.g. the curves whose F walk was taken from E_e's where
-its fit read none; that column is written from held-out 39 on).
+its fit read none; that column is written from held-out 39 on); given more than once, every one holds
+(`--only collapse_onset=` keeps the curves without a collapse found).
 `--quantity x_c` (or x_p) scores that strain's intervals instead, ± sd (68 %) and ± 1.96 sd (95 %)
 about the estimate, from the x_c and x_c_sd columns: the scale multiplies the half-width as for δ_x
 (src/analysis/analysis.hpp, critical_strain_scales and precursor_strain_scales).
@@ -70,7 +71,7 @@ WHITE_FROM = None  # set by --white-from
 LEVEL_FROM_BOTH = False  # set by --level-from-both
 COLLAPSE_EDGE = None  # set by --collapse-closeness
 POOL_GROUPS_BELOW = 0  # set by --pool-groups-below
-ONLY = None  # (column, value), set by --only
+ONLY = []  # (column, value) pairs, set by --only
 HALF_WIDTH_IN_SD = {"68": 1.0, "95": 1.96}
 
 
@@ -113,8 +114,7 @@ def read(paths, skipped=()):
                         sys.exit(f"{path}: no column collapse_onset; --collapse-closeness needs files from "
                                  "held-out-27-brittle on")
                     kept = [r for r in kept if collapse_closeness(r) is not None]
-                if ONLY is not None:
-                    column, value = ONLY
+                for column, value in ONLY:
                     if column not in (table.fieldnames or []):
                         sys.exit(f"{path}: no column {column}; --only names a column the file has")
                     kept = [r for r in kept if r[column] == value]
@@ -334,7 +334,7 @@ def share_argument(args, option, of_what, example):
 
 def main(argv):
     global QUANTITY, KIND_COLUMN, QUIET_BELOW, WHITE_BY_LEVEL, WHITE_FROM, LEVEL_FROM_BOTH, COLLAPSE_EDGE
-    global POOL_GROUPS_BELOW, ONLY
+    global POOL_GROUPS_BELOW
     if "--check" in argv:
         cut = argv.index("--check")
         argv, check = argv[:cut], argv[cut + 1:]
@@ -373,7 +373,7 @@ def main(argv):
             column, equals, value = next(args, "").partition("=")
             if not column or not equals:
                 sys.exit("interval_scales.py: --only needs COLUMN=VALUE, e.g. --only force_walk_read_as_zero=1")
-            ONLY = (column, value)
+            ONLY.append((column, value))
         elif arg == "--pool-checks":
             pool_checks = True
         elif arg == "--use":
