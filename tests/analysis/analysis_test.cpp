@@ -546,10 +546,10 @@ TEST(AnalyzeCurve, QuietCurvesTakeTheRandomWalksFactors) {
 }
 
 // A DEM-like curve (a bundle whose F also carries 1 % white noise) at 1,000 rows: F's walk is lost
-// under its white noise in the window's noise model and taken from E_e's, so x_c's interval says it is
-// not calibrated and a warning says why; the same bundle without the white noise on F keeps its
-// calibrated interval.
-TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
+// under its white noise in the window's noise model and taken from E_e's, so x_c's and x_p's intervals
+// say they are not calibrated (held-out 39's mixed curves) and a warning says why; δ_x's stays
+// calibrated, and the same bundle without the white noise on F keeps its calibrated intervals.
+TEST(AnalyzeCurve, AHiddenForceWalkLeavesTheStrainsIntervalsNotCalibrated) {
   using namespace calibration;
   const auto set = calibration_set("tuning");
   const NoiseGroup mixed = mixed_noise_groups()[0];
@@ -562,10 +562,14 @@ TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
   EXPECT_GT(hidden.noise_model.force.walk, 0.0);
   EXPECT_GT(hidden.noise_model.energy.walk, 0.0);
   EXPECT_FALSE(hidden.x_c_interval->scales.calibrated);
+  EXPECT_FALSE(hidden.x_p_interval->scales.calibrated);
+  EXPECT_TRUE(hidden.interval_scales.calibrated);
   EXPECT_EQ(hidden.x_c_interval->scales.level68, critical_strain_scales.random_walk_profile.level68);
   ASSERT_FALSE(hidden.warnings.empty());
   EXPECT_NE(hidden.warnings.back().find("fits no random walk in F"), std::string::npos);
-  EXPECT_NE(hidden.warnings.back().find("takes F's walk from E_e's"), std::string::npos);
+  EXPECT_NE(hidden.warnings.back().find("F's walk was taken from E_e's"), std::string::npos);
+  EXPECT_NE(hidden.warnings.back().find("the intervals of x_c and x_p are not calibrated"),
+            std::string::npos);
   // Where x_c's interval is not calibrated anyway (the bootstrap's own), nothing is added.
   AnalysisOptions unscaled;
   unscaled.calibrated_intervals = false;
@@ -576,7 +580,7 @@ TEST(AnalyzeCurve, AHiddenForceWalkLeavesXcNotCalibrated) {
   const auto plain = analyze_curve(curve_case.draw({"bundle", 0, mixed.fibers}), {});
   ASSERT_TRUE(plain.accepted) << plain.rejection;
   EXPECT_FALSE(force_walk_hidden(plain));
-  EXPECT_TRUE(plain.x_c_interval->scales.calibrated);
+  EXPECT_TRUE(plain.x_c_interval->scales.calibrated && plain.x_p_interval->scales.calibrated);
 }
 
 // x_p's white factors: the anchors at their shares, linear in log share between them (so the geometric
@@ -928,8 +932,8 @@ TEST(NoiseModel, AWalkHiddenUnderFsRingingIsTakenFromEnergysWalk) {
 }
 
 // The same bundle at 5,000 rows over a span from strain 0.001 to 0.5, its F walk read as zero (as white
-// noise on F makes it: AnalyzeCurve.AHiddenForceWalkLeavesXcNotCalibrated) while a walk dominates
-// E_e's: F's walk is taken from E_e's, each sample weighted by E_e's step there from the breaks'
+// noise on F makes it: AnalyzeCurve.AHiddenForceWalkLeavesTheStrainsIntervalsNotCalibrated) while a walk
+// dominates E_e's: F's walk is taken from E_e's, each sample weighted by E_e's step there from the breaks'
 // physics, so that F's walk over E_e's is the true ratio of their rms steps (x² p h / N against
 // x⁴/4 p h / N per row, p = 2x) within 5 %. Near zero strain F/E_e = 2/x has no bound: weighted by the
 // noise model's floored profile instead, the ratio came out 2.2 times too large here, and F's walk
@@ -1390,7 +1394,7 @@ TEST(AnalyzeCurve, ASharpCollapseDoesNotPullThePrecursorOntoIt) {
 // A curve cut by a collapse takes the collapse tables' factors (collapse_delta_scales and the strain
 // ones) by its noise kind and by how close the collapse comes to the force peak: near at 1.05 x_c, far
 // at 1.2 x_c; each interval is the bootstrap's own stretched by them, calibrated in the cells that passed
-// held-out 38 (δ_x's and x_p's far walk cells, x_c's white far cell). Under the corner form, which the
+// held-out 39 (δ_x's and x_p's far walk cells, x_c's white far cell). Under the corner form, which the
 // factors were not learned with, with the bootstrap's own asked for, or on a walk without its step profile,
 // the intervals are the bootstrap's own, not calibrated, and the warning says which.
 TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
@@ -1430,7 +1434,7 @@ TEST(AnalyzeCurve, ACurveCutByACollapseTakesTheFactorsOfHowCloseItComes) {
       EXPECT_EQ(r.interval_scales.level95, delta.level95) << which;
       EXPECT_EQ(r.x_c_interval->scales.level68, critical.level68) << which;
       EXPECT_EQ(r.x_p_interval->scales.level95, precursor.level95) << which;
-      // Held-out 38 calibrated δ_x's and x_p's far walk cells and x_c's white far cell.
+      // Held-out 39 calibrated δ_x's and x_p's far walk cells and x_c's white far cell.
       const bool far_walk = walk && !near, far_white = !walk && !near;
       EXPECT_EQ(delta.calibrated, far_walk) << which;
       EXPECT_EQ(precursor.calibrated, far_walk) << which;
