@@ -1155,7 +1155,8 @@ void estimate_delay(const Grid& g, const BootstrapRun& run, const BootstrapInter
           "the noise model fits no random walk in F while it fits one in E_e (bootstrap window): {}; {} "
           "not calibrated (docs/analysis.md, \"Known limits\")",
           taken ? "F's walk was taken from E_e's, each step F/E_e times E_e's (on such curves with known "
-                  "answers x_c's intervals covered 68.2 % and 97.6 % at 68 and 95 %, x_p's 59.6 % and 92.7 %)"
+                  "answers scored as a walk x_c's intervals covered 68.2 % and 97.6 % at 68 and 95 %, x_p's "
+                  "59.6 % and 92.7 %)"
                 : "x_c's interval leaves F's walk out (it covered 24-50 % at 68 % on such curves with known "
                   "answers)",
           x_c_marked && x_p_marked ? "the intervals of x_c and x_p are"

@@ -236,13 +236,14 @@ inline constexpr NoiseIntervalScales precursor_strain_scales{.white_noise = unca
 // nominal at both levels than the bootstrap's own, else factor 1. Passed: δ_x's and x_p's far walk cells
 // (70.1 / 94.5 %, 63.7 / 93.7 %) and x_c's white far cell (65.6 / 95.2 %), as on held-out 38. Each failed
 // cell says what fell short in its `shortfall` below. The near walk cells of δ_x and x_c and the near white
-// ones fail through finite bundles or white curves cut within 2 % past their peak (brittle-close), where x_c
-// comes early, a bias no factor mends; the white far cells of δ_x and x_p through two curves in small
-// groups; x_p's near cells through dem-like and run-like means; x_c's far walk cell (67.8 / 94.7 %) through
-// run-like means every 200 steps, 63 of 108 at 68 % where 65 were needed. x_p's white near cell ships factor
-// 1, its candidate not nearer nominal at 95 % than the bootstrap's own.
-// The check the cells below last faced, as the collapse warning cites it: its name and its section in
-// docs/analysis.md (what fell short in a cell that failed it is the cell's own shortfall).
+// ones of δ_x and x_c fail through finite bundles or white curves cut within 2 % past their peak
+// (brittle-close), where x_c comes early, a bias no factor mends (some through dem-like rows as well); the
+// white far cells of δ_x and x_p through two curves in small groups; x_p's near walk cell through dem-like
+// samples and run-like means, its near white one through dem-like means; x_c's far walk cell (67.8 / 94.7 %)
+// through run-like means every 200 steps, 63 of 108 at 68 % where 65 were needed. x_p's white near cell ships
+// factor 1, its candidate not nearer nominal at 95 % than the bootstrap's own. The check the cells below last
+// faced, as the collapse warning cites it: its name and its section in docs/analysis.md (what fell short in a
+// cell that failed it is the cell's own shortfall).
 inline constexpr std::string_view collapse_factors_checked_on = "held-out 39";
 inline constexpr std::string_view collapse_check_section =
     "F's walk taken from E_e's with the breaks' own weights, also where it is read as zero, checked on "
